@@ -1,0 +1,55 @@
+// The exact visibility map: what every engine produces and every exporter writes.
+// Numbers are exact rationals (GMP); no CGAL type appears here.
+#pragma once
+#include <gmpxx.h>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace vismap {
+
+struct Point2 {
+  mpq_class x, y;
+};
+bool operator<(const Point2& a, const Point2& b);   // lexicographic (x, then y)
+bool operator==(const Point2& a, const Point2& b);
+
+enum class EdgeKind { Border, Silhouette, Crease, Smooth, Intersection };
+const char* to_string(EdgeKind k);
+
+struct Region {
+  int face = -1;                              // input face index
+  std::vector<Point2> outer;                  // counter-clockwise
+  std::vector<std::vector<Point2>> holes;     // each clockwise
+};
+
+struct Segment {
+  Point2 from, to;                            // from < to (lexicographic)
+  EdgeKind kind = EdgeKind::Border;
+  std::vector<int> faces;                     // ascending
+};
+
+// Free-form counters and phase timings, written in insertion order.
+struct Stats {
+  std::vector<std::pair<std::string, double>> seconds;
+  std::vector<std::pair<std::string, std::int64_t>> counts;
+  void time(const std::string& name, double s) { seconds.emplace_back(name, s); }
+  void count(const std::string& name, std::int64_t n) { counts.emplace_back(name, n); }
+};
+
+using Matrix4 = std::array<std::array<mpq_class, 4>, 4>;
+
+struct VisibilityMap {
+  std::string scene_file;
+  std::size_t scene_faces = 0;
+  bool perspective = false;
+  Matrix4 view;                               // the exact matrix the engine used
+  std::vector<Region> regions;                // canonical order (see map_canonical.cpp)
+  std::vector<Segment> segments;              // canonical order
+  Stats stats;
+};
+
+}  // namespace vismap
