@@ -1,1 +1,107 @@
-// placeholder
+#include "arrangements/json_writer.h"
+
+#include <cstdio>
+
+#include "arrangements/rational.h"
+
+namespace vismap {
+namespace {
+
+void quoted(std::string& out, const std::string& s) {
+  out += '"';
+  for (char c : s) {
+    if (c == '"' || c == '\\') { out += '\\'; out += c; }
+    else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+    } else out += c;
+  }
+  out += '"';
+}
+
+void number(std::string& out, const mpq_class& q) { out += '"'; out += canonical(q); out += '"'; }
+
+void point(std::string& out, const Point2& p) {
+  out += '[';
+  number(out, p.x);
+  out += ',';
+  number(out, p.y);
+  out += ']';
+}
+
+void ring(std::string& out, const std::vector<Point2>& r) {
+  out += '[';
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    if (i) out += ',';
+    point(out, r[i]);
+  }
+  out += ']';
+}
+
+}  // namespace
+
+std::string to_json(const VisibilityMap& map) {
+  std::string out;
+  out += "{\"format\":\"vismap\",\"version\":1,\n\"scene\":{\"file\":";
+  quoted(out, map.scene_file);
+  out += ",\"faces\":" + std::to_string(map.scene_faces) + "},\n";
+  out += map.perspective ? "\"projection\":\"perspective\",\n" : "\"projection\":\"orthographic\",\n";
+  out += "\"view_matrix\":[";
+  for (int r = 0; r < 4; ++r) {
+    out += r ? ",[" : "[";
+    for (int c = 0; c < 4; ++c) {
+      if (c) out += ',';
+      number(out, map.view[r][c]);
+    }
+    out += ']';
+  }
+  out += "],\n\"regions\":[";
+  for (std::size_t i = 0; i < map.regions.size(); ++i) {
+    const Region& g = map.regions[i];
+    out += i ? ",\n" : "\n";
+    out += "{\"face\":" + std::to_string(g.face) + ",\"outer\":";
+    ring(out, g.outer);
+    out += ",\"holes\":[";
+    for (std::size_t h = 0; h < g.holes.size(); ++h) {
+      if (h) out += ',';
+      ring(out, g.holes[h]);
+    }
+    out += "]}";
+  }
+  out += "],\n\"segments\":[";
+  for (std::size_t i = 0; i < map.segments.size(); ++i) {
+    const Segment& s = map.segments[i];
+    out += i ? ",\n" : "\n";
+    out += "{\"from\":";
+    point(out, s.from);
+    out += ",\"to\":";
+    point(out, s.to);
+    out += ",\"kind\":\"";
+    out += to_string(s.kind);
+    out += "\",\"faces\":[";
+    for (std::size_t k = 0; k < s.faces.size(); ++k) {
+      if (k) out += ',';
+      out += std::to_string(s.faces[k]);
+    }
+    out += "]}";
+  }
+  out += "],\n\"stats\":{\"seconds\":{";
+  char buf[64];
+  for (std::size_t i = 0; i < map.stats.seconds.size(); ++i) {
+    if (i) out += ',';
+    quoted(out, map.stats.seconds[i].first);
+    std::snprintf(buf, sizeof buf, ":%.6f", map.stats.seconds[i].second);
+    out += buf;
+  }
+  out += "},\"counts\":{";
+  for (std::size_t i = 0; i < map.stats.counts.size(); ++i) {
+    if (i) out += ',';
+    quoted(out, map.stats.counts[i].first);
+    out += ':' + std::to_string(map.stats.counts[i].second);
+  }
+  out += "}}}\n";
+  return out;
+}
+
+}  // namespace vismap

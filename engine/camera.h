@@ -22,6 +22,7 @@ struct CameraSpec {
 struct View {
   bool perspective = false;
   std::array<std::array<double, 4>, 4> m{};
+  Vec3 eye{};   // perspective only: the eye point (W = 0 there)
 };
 
 // Throws std::invalid_argument for an impossible camera (zero direction, eye on

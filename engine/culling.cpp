@@ -1,1 +1,90 @@
-// placeholder
+#include "engine/culling.h"
+
+#include <gmpxx.h>
+
+#include <cmath>
+#include <numeric>
+
+namespace vismap::engine {
+namespace {
+
+struct UnionFind {
+  std::vector<int> parent;
+  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void join(int a, int b) { parent[find(a)] = find(b); }
+};
+
+// Six times the signed volume of the tetrahedron (o, a, b, c), exactly.
+mpq_class det(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& c) {
+  mpq_class ax = mpq_class(a.x) - o.x, ay = mpq_class(a.y) - o.y, az = mpq_class(a.z) - o.z;
+  mpq_class bx = mpq_class(b.x) - o.x, by = mpq_class(b.y) - o.y, bz = mpq_class(b.z) - o.z;
+  mpq_class cx = mpq_class(c.x) - o.x, cy = mpq_class(c.y) - o.y, cz = mpq_class(c.z) - o.z;
+  return ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx);
+}
+
+}  // namespace
+
+std::vector<std::int8_t> closed_component_sides(
+    const Scene& scene, const WorldFacets& wf, const std::vector<WorldPiece>& pieces,
+    const View& view, const std::function<bool(std::uint32_t)>& vertex_in_front) {
+  const int n = static_cast<int>(wf.facets.size());
+  UnionFind uf(n);
+  // A piece closes the surface when exactly two facets share it, traversing it in
+  // opposite directions (consistent orientation).
+  std::vector<char> good(pieces.size());
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const auto& s = pieces[i].sharers;
+    good[i] = s.size() == 2 && s[0].forward != s[1].forward;
+    for (std::size_t k = 1; k < s.size(); ++k) uf.join(s[0].facet, s[k].facet);
+  }
+  std::vector<char> closed(n, 1);
+  for (std::size_t i = 0; i < pieces.size(); ++i)
+    if (!good[i]) for (const auto& s : pieces[i].sharers) closed[uf.find(s.facet)] = 0;
+
+  // Eye outside: orthographic eyes are at infinity; a perspective eye must lie
+  // strictly outside the component's bounding box, and the near plane must not cut it.
+  std::vector<Vec3> lo(n, Vec3{HUGE_VAL, HUGE_VAL, HUGE_VAL}), hi(n, Vec3{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL});
+  std::vector<Vec3> origin(n);
+  std::vector<char> has_origin(n, 0);
+  for (int f = 0; f < n; ++f) {
+    int c = uf.find(f);
+    if (!closed[c]) continue;
+    for (auto id : wf.facets[f].v) {
+      const Vec3& p = scene.vertices[id];
+      if (view.perspective && !vertex_in_front(id)) closed[c] = 0;
+      lo[c] = {std::min(lo[c].x, p.x), std::min(lo[c].y, p.y), std::min(lo[c].z, p.z)};
+      hi[c] = {std::max(hi[c].x, p.x), std::max(hi[c].y, p.y), std::max(hi[c].z, p.z)};
+      if (!has_origin[c]) { origin[c] = p; has_origin[c] = 1; }
+    }
+  }
+  if (view.perspective)
+    for (int c = 0; c < n; ++c) {
+      if (!closed[c] || uf.find(c) != c) continue;
+      const Vec3& e = view.eye;
+      bool inside_box = e.x >= lo[c].x && e.x <= hi[c].x && e.y >= lo[c].y && e.y <= hi[c].y &&
+                        e.z >= lo[c].z && e.z <= hi[c].z;
+      if (inside_box) closed[c] = 0;
+    }
+
+  // Orientation of each closed component: the sign of its exact signed volume.
+  std::vector<mpq_class> volume(n);
+  for (int f = 0; f < n; ++f) {
+    int c = uf.find(f);
+    if (!closed[c]) continue;
+    const auto& v = wf.facets[f].v;
+    for (std::size_t k = 1; k + 1 < v.size(); ++k)
+      volume[c] += det(origin[c], scene.vertices[v[0]], scene.vertices[v[k]], scene.vertices[v[k + 1]]);
+  }
+  std::vector<std::int8_t> side(n, 0);
+  for (int f = 0; f < n; ++f) {
+    int c = uf.find(f);
+    if (closed[c]) side[f] = static_cast<std::int8_t>(sgn(volume[c]));
+  }
+  return side;
+}
+
+}  // namespace vismap::engine

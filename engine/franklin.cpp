@@ -1,1 +1,78 @@
-// placeholder
+// Franklin 1980, "A linear time exact hidden surface algorithm", step by step.
+// Each step is one call; the steps live in screen_scene.cpp (1, culling),
+// franklin_grid.cpp (2-9, 11) and arrangements/map_builder.cpp (10).
+#include <chrono>
+
+#include "arrangements/map_builder.h"
+#include "engine/franklin_grid.h"
+#include "engine/screen_scene.h"
+#include "engine/visibility.h"
+
+namespace vismap {
+
+namespace {
+struct Clock {
+  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+  double lap() {
+    auto t = std::chrono::steady_clock::now();
+    double s = std::chrono::duration<double>(t - t0).count();
+    t0 = t;
+    return s;
+  }
+};
+}  // namespace
+
+VisibilityMap visibility_franklin(const Scene& scene, const View& view, const EngineOptions& opt) {
+  using namespace engine;
+  VisibilityMap map;
+  map.scene_file = scene.file;
+  map.scene_faces = scene.faces.size();
+  map.perspective = view.perspective;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) map.view[r][c] = mpq_class(view.m[r][c]);
+  Stats& st = map.stats;
+  st.count("faces_read", static_cast<std::int64_t>(scene.faces.size()));
+  Clock clock;
+
+  // 1. Project the scene exactly; skip what cannot be seen (outside, edge-on, back faces).
+  ScreenScene ss = make_screen_scene(scene, view, opt, st);
+  st.time("project_and_cull", clock.lap());
+
+  // 2-4. The variable grid: B = c * min(sqrt(N), 1/L) cells per side.
+  Grid grid = make_grid(ss, opt.grid_c, st);
+  // 5. Faces into cells, with each cell's blocking face; 5c drops faces hidden everywhere.
+  bucket_facets(grid, ss, st);
+  // 6. Remove what each cell's final blocking face hides.
+  prune_facets(grid, ss, st);
+  st.time("faces_to_cells", clock.lap());
+
+  // Faces that pierce each other draw an intersection line: a curve like any edge.
+  add_intersection_lines(grid, ss, st);
+  // 7. Edges into the cells they cross, unless behind the blocking face; 7b drops hidden ones.
+  bucket_curves(grid, ss, st);
+  st.time("edges_to_cells", clock.lap());
+
+  // 8. Intersect the edges pairwise within each cell.
+  auto cuts = cut_curves(grid, ss, st);
+  st.time("intersections", clock.lap());
+
+  // 9, 11. Cut edges into pieces; each piece's visibility, and the nearest face on each side.
+  std::vector<VisiblePiece> pieces = classify_pieces(grid, ss, cuts, st);
+  st.time("visibility", clock.lap());
+
+  // 10. The planar arrangement of the visible pieces, its regions labelled.
+  std::vector<MapPiece> mp;
+  mp.reserve(pieces.size());
+  for (const VisiblePiece& p : pieces) {
+    const Curve& c = ss.curves[p.curve];
+    mp.push_back(MapPiece{p.a, p.b, depth_on(c, p.a), depth_on(c, p.b), p.left, p.right, p.visible, c.kind,
+                          &c.faces, c.order_face});
+  }
+  build_map(mp, map);
+  st.time("arrangement", clock.lap());
+  st.count("visible_segments", static_cast<std::int64_t>(map.segments.size()));
+  st.count("regions", static_cast<std::int64_t>(map.regions.size()));
+  return map;
+}
+
+}  // namespace vismap

@@ -1,1 +1,513 @@
-// placeholder
+#include "engine/franklin_grid.h"
+
+#include <CGAL/Iso_rectangle_2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_set>
+
+namespace vismap::engine {
+namespace {
+
+using Rect = K::Iso_rectangle_2;
+
+// Index of the cell holding double coordinate v: the last boundary <= v (clamped).
+int cell_index(const std::vector<double>& bounds, double v) {
+  int i = static_cast<int>(std::upper_bound(bounds.begin(), bounds.end(), v) - bounds.begin()) - 1;
+  return std::clamp(i, 0, static_cast<int>(bounds.size()) - 2);
+}
+
+// The cell that holds exact coordinate v under the half-open rule [X_i, X_i+1)
+// (the last cell is closed): guessed in doubles, confirmed exactly.
+int exact_cell_index(const std::vector<double>& bounds, const FT& v) {
+  const int last = static_cast<int>(bounds.size()) - 2;
+  int i = cell_index(bounds, CGAL::to_double(v));
+  while (i > 0 && v < FT(bounds[i])) --i;
+  while (i < last && !(v < FT(bounds[i + 1]))) ++i;
+  return i;
+}
+
+struct CellRange {
+  int x0, x1, y0, y1;
+};
+CellRange range_of(const Grid& g, const CGAL::Bbox_2& b) {
+  return {cell_index(g.X, b.xmin()), cell_index(g.X, b.xmax()), cell_index(g.Y, b.ymin()),
+          cell_index(g.Y, b.ymax())};
+}
+
+std::array<P2, 4> corners(const Grid& g, int ix, int iy) {
+  return {P2(g.X[ix], g.Y[iy]), P2(g.X[ix + 1], g.Y[iy]), P2(g.X[ix + 1], g.Y[iy + 1]), P2(g.X[ix], g.Y[iy + 1])};
+}
+
+bool in_cell(const Grid& g, int ix, int iy, const P2& p) {
+  return exact_cell_index(g.X, p.x()) == ix && exact_cell_index(g.Y, p.y()) == iy;
+}
+
+// +1 for counter-clockwise facets, -1 for clockwise: the side their interior is on.
+int turn(const Facet& f) { return f.facing == Facing::Front ? 1 : -1; }
+
+// p strictly inside the projection of the convex facet f.
+bool strictly_inside(const Facet& f, const P2& p) {
+  const std::size_t n = f.v.size();
+  for (std::size_t k = 0; k < n; ++k)
+    if (CGAL::orientation(f.v[k].xy(), f.v[(k + 1) % n].xy(), p) * turn(f) <= 0) return false;
+  return true;
+}
+
+bool same_plane(const Facet& f, const Facet& b) { return f.a == b.a && f.b == b.b && f.c == b.c; }
+
+// f is hidden by b everywhere in the closed cell (b covers it): strictly deeper at
+// the 4 corners (depths are affine, so everywhere, and in a neighbourhood), or in
+// b's very plane with a higher face index.
+bool behind_throughout(const Facet& f, const Facet& b, const std::array<P2, 4>& c) {
+  bool deeper = true;
+  for (const P2& p : c)
+    if (!(f.depth_at(p) > b.depth_at(p))) { deeper = false; break; }
+  return deeper || (b.face < f.face && same_plane(f, b));
+}
+
+// Both points strictly behind the plane of b: the whole segment is.
+bool curve_behind(const Curve& cv, const Facet& b) {
+  return cv.s.z > b.depth_at(cv.s.xy()) && cv.t.z > b.depth_at(cv.t.xy());
+}
+
+}  // namespace
+
+// Steps 2-4: B = c * min(sqrt(N), 1/L) cells per side over the projected scene.
+Grid make_grid(const ScreenScene& ss, double c, Stats& stats) {
+  CGAL::Bbox_2 box;
+  bool any = false;
+  double total_len = 0;
+  for (const Curve& cv : ss.curves) {
+    box = any ? box + cv.box : cv.box;
+    any = true;
+    total_len += std::hypot(cv.box.xmax() - cv.box.xmin(), cv.box.ymax() - cv.box.ymin());
+  }
+  for (const Facet& f : ss.facets)
+    if (f.occluder) { box = any ? box + f.box : f.box; any = true; }
+  Grid g;
+  const double size = any ? std::max(box.xmax() - box.xmin(), box.ymax() - box.ymin()) : 0;
+  const double n = static_cast<double>(ss.curves.size());
+  if (any && size > 0 && n > 0) {
+    double L = total_len / n / size;   // mean projected edge length on a unit screen
+    double b = c * std::min(std::sqrt(n), L > 0 ? 1 / L : std::sqrt(n));
+    g.B = static_cast<int>(std::clamp(b, 1.0, 4096.0));
+  }
+  if (!any) box = CGAL::Bbox_2(0, 0, 1, 1);
+  // Boundaries are doubles; the first and last are the box itself (exact bounds).
+  g.X.resize(g.B + 1);
+  g.Y.resize(g.B + 1);
+  const double w = (box.xmax() - box.xmin()) / g.B, h = (box.ymax() - box.ymin()) / g.B;
+  for (int i = 0; i <= g.B; ++i) {
+    g.X[i] = i == g.B ? box.xmax() : box.xmin() + i * w;
+    g.Y[i] = i == g.B ? box.ymax() : box.ymin() + i * h;
+  }
+  for (int i = 1; i <= g.B; ++i) {   // keep them strictly increasing
+    g.X[i] = std::max(g.X[i], std::nextafter(g.X[i - 1], HUGE_VAL));
+    g.Y[i] = std::max(g.Y[i], std::nextafter(g.Y[i - 1], HUGE_VAL));
+  }
+  g.cells.resize(static_cast<std::size_t>(g.B) * g.B);
+  stats.count("grid_B", g.B);
+  stats.count("grid_cells", static_cast<std::int64_t>(g.cells.size()));
+  return g;
+}
+
+// Step 5: each facet goes to the cells of its bounding box, unless the cell's
+// blocking facet hides it there; a facet covering a cell may become its blocker.
+void bucket_facets(Grid& g, ScreenScene& ss, Stats& stats) {
+  std::int64_t hidden_facets = 0, skipped = 0, blockers = 0;
+  for (int fi = 0; fi < static_cast<int>(ss.facets.size()); ++fi) {
+    Facet& f = ss.facets[fi];
+    if (!f.occluder) continue;
+    bool kept = false;
+    CellRange r = range_of(g, f.box);
+    for (int iy = r.y0; iy <= r.y1; ++iy)
+      for (int ix = r.x0; ix <= r.x1; ++ix) {
+        Cell& cell = g.at(ix, iy);
+        auto c = corners(g, ix, iy);
+        if (cell.blocker >= 0 && behind_throughout(f, ss.facets[cell.blocker], c)) { ++skipped; continue; }
+        kept = true;
+        bool covers = std::all_of(c.begin(), c.end(), [&](const P2& p) { return strictly_inside(f, p); });
+        if (!covers) { cell.facets.push_back(fi); continue; }
+        ++blockers;
+        if (cell.blocker < 0 || behind_throughout(ss.facets[cell.blocker], f, c)) { cell.blocker = fi; continue; }
+        // Two covering facets that cross inside the cell: the nearer at the centre
+        // blocks, the other stays listed.
+        P2 mid(FT(g.X[ix] + g.X[ix + 1]) / 2, FT(g.Y[iy] + g.Y[iy + 1]) / 2);
+        const Facet& b = ss.facets[cell.blocker];
+        bool nearer = f.depth_at(mid) < b.depth_at(mid) || (f.depth_at(mid) == b.depth_at(mid) && f.face < b.face);
+        if (nearer) { cell.facets.push_back(cell.blocker); cell.blocker = fi; }
+        else cell.facets.push_back(fi);
+      }
+    if (!kept) { f.occluder = false; ++hidden_facets; }   // step 5c
+  }
+  stats.count("facet_cells_behind_blocker", skipped);
+  stats.count("blocking_candidates", blockers);
+  stats.count("culled_behind_blocking_face", hidden_facets);
+}
+
+// Step 6: drop what the final blocker hides (it may have changed after a facet was listed).
+void prune_facets(Grid& g, const ScreenScene& ss, Stats& stats) {
+  std::int64_t pruned = 0;
+  for (int iy = 0; iy < g.B; ++iy)
+    for (int ix = 0; ix < g.B; ++ix) {
+      Cell& cell = g.at(ix, iy);
+      if (cell.blocker < 0) continue;
+      auto c = corners(g, ix, iy);
+      const Facet& b = ss.facets[cell.blocker];
+      auto hidden = [&](int fi) { return fi == cell.blocker || behind_throughout(ss.facets[fi], b, c); };
+      std::size_t before = cell.facets.size();
+      cell.facets.erase(std::remove_if(cell.facets.begin(), cell.facets.end(), hidden), cell.facets.end());
+      pruned += static_cast<std::int64_t>(before - cell.facets.size());
+    }
+  stats.count("facet_cells_pruned", pruned);
+}
+
+namespace {
+
+// Where facets A and B cross in 3D strictly inside both projections, as a screen
+// segment; false when they do not, or only along an edge of either.
+bool intersection_segment(const Facet& A, const Facet& B, P2& p, P2& q) {
+  // Newell's tests 3 and 4: one facet entirely on one side of the other's plane.
+  auto one_side = [](const Facet& F, const Facet& G) {
+    bool pos = false, neg = false;
+    for (const P3& v : F.v) {
+      auto s = CGAL::compare(v.z, G.depth_at(v.xy()));
+      pos |= s == CGAL::LARGER;
+      neg |= s == CGAL::SMALLER;
+    }
+    return !(pos && neg);
+  };
+  if (one_side(A, B) || one_side(B, A)) return false;
+  FT da = A.a - B.a, db = A.b - B.b, dc = A.c - B.c;
+  // The crossing line: da x + db y + dc = 0, as p0 + t d.
+  const bool use_x = CGAL::compare(CGAL::abs(da), CGAL::abs(db)) != CGAL::SMALLER;
+  if (CGAL::is_zero(da) && CGAL::is_zero(db)) return false;
+  P2 p0 = use_x ? P2(-dc / da, FT(0)) : P2(FT(0), -dc / db);
+  V2 d(-db, da);
+  bool has_lo = false, has_hi = false;
+  FT lo, hi;
+  for (const Facet* F : {&A, &B}) {
+    const std::size_t n = F->v.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      P2 e0 = F->v[k].xy(), e1 = F->v[(k + 1) % n].xy();
+      V2 e = e1 - e0;
+      FT alpha = e.x() * (p0.y() - e0.y()) - e.y() * (p0.x() - e0.x());
+      FT beta = e.x() * d.y() - e.y() * d.x();
+      if (turn(*F) < 0) { alpha = -alpha; beta = -beta; }
+      auto sb = CGAL::sign(beta);
+      if (sb == CGAL::ZERO) {
+        if (!CGAL::is_positive(alpha)) return false;   // outside, or along the edge
+        continue;
+      }
+      FT t = -alpha / beta;
+      if (sb > 0) { if (!has_lo || t > lo) lo = t; has_lo = true; }
+      else { if (!has_hi || t < hi) hi = t; has_hi = true; }
+    }
+  }
+  if (!has_lo || !has_hi || !(lo < hi)) return false;
+  p = p0 + lo * d;
+  q = p0 + hi * d;
+  return true;
+}
+
+}  // namespace
+
+// Faces that pierce each other: an intersection line for every pair of facets of
+// different faces that share a cell and cross inside both projections.
+void add_intersection_lines(Grid& g, ScreenScene& ss, Stats& stats) {
+  std::unordered_set<std::uint64_t> seen;
+  std::int64_t tested = 0, found = 0;
+  std::vector<int> here;
+  for (Cell& cell : g.cells) {
+    here = cell.facets;
+    if (cell.blocker >= 0) here.push_back(cell.blocker);
+    for (std::size_t i = 0; i < here.size(); ++i)
+      for (std::size_t j = i + 1; j < here.size(); ++j) {
+        int fa = std::min(here[i], here[j]), fb = std::max(here[i], here[j]);
+        const Facet &A = ss.facets[fa], &B = ss.facets[fb];
+        if (A.face == B.face || !CGAL::do_overlap(A.box, B.box)) continue;
+        if (!seen.insert((static_cast<std::uint64_t>(fa) << 32) | static_cast<std::uint32_t>(fb)).second) continue;
+        ++tested;
+        P2 p, q;
+        if (!intersection_segment(A, B, p, q)) continue;
+        ++found;
+        Curve c;
+        c.s = P3{p.x(), p.y(), A.depth_at(p)};
+        c.t = P3{q.x(), q.y(), A.depth_at(q)};
+        c.sharers = {fa, fb};
+        c.faces = {std::min(A.face, B.face), std::max(A.face, B.face)};
+        c.kind = EdgeKind::Intersection;
+        c.drawn = true;
+        c.order_face = c.faces[0];
+        auto ip = CGAL::to_interval(p.x()), jp = CGAL::to_interval(p.y());
+        auto iq = CGAL::to_interval(q.x()), jq = CGAL::to_interval(q.y());
+        c.box = CGAL::Bbox_2(ip.first, jp.first, ip.second, jp.second) +
+                CGAL::Bbox_2(iq.first, jq.first, iq.second, jq.second);
+        ss.curves.push_back(std::move(c));
+      }
+  }
+  stats.count("facet_pairs_tested", tested);
+  stats.count("intersection_lines", found);
+}
+
+// Step 7: each curve goes to the cells it passes through, unless it lies wholly
+// behind the cell's blocker (7a-i); a curve listed nowhere is hidden (7b).
+void bucket_curves(Grid& g, const ScreenScene& ss, Stats& stats) {
+  std::int64_t hidden = 0, listed = 0;
+  for (int ci = 0; ci < static_cast<int>(ss.curves.size()); ++ci) {
+    const Curve& cv = ss.curves[ci];
+    Seg2 seg(cv.s.xy(), cv.t.xy());
+    CellRange r = range_of(g, cv.box);
+    bool kept = false;
+    for (int iy = r.y0; iy <= r.y1; ++iy)
+      for (int ix = r.x0; ix <= r.x1; ++ix) {
+        Cell& cell = g.at(ix, iy);
+        if ((r.x0 != r.x1 || r.y0 != r.y1) &&
+            !CGAL::do_intersect(seg, Rect(P2(g.X[ix], g.Y[iy]), P2(g.X[ix + 1], g.Y[iy + 1]))))
+          continue;
+        if (cell.blocker >= 0 && curve_behind(cv, ss.facets[cell.blocker])) continue;
+        cell.curves.push_back(ci);
+        kept = true;
+        ++listed;
+      }
+    hidden += !kept;
+  }
+  stats.count("curve_cells", listed);
+  stats.count("edges_culled_behind_blocking_face", hidden);
+}
+
+namespace {
+
+// The screen point where two curves on one line have equal depth, strictly
+// inside their common part; false if their depth order does not change there.
+bool depth_crossing(const Curve& C, const Curve& D, const P2& lo, const P2& hi, P2& x) {
+  FT flo = depth_on(C, lo) - depth_on(D, lo), fhi = depth_on(C, hi) - depth_on(D, hi);
+  if (CGAL::sign(flo) * CGAL::sign(fhi) >= 0) return false;
+  FT mu = flo / (flo - fhi);
+  x = lo + mu * (hi - lo);
+  return true;
+}
+
+struct Cutter {
+  Grid& g;
+  const ScreenScene& ss;
+  std::vector<std::vector<P2>>& cuts;
+  int ix, iy;
+  std::int64_t pairs = 0, crossings = 0;
+
+  void cut(int c, const P2& p) {
+    if (in_cell(g, ix, iy, p)) cuts[c].push_back(p);
+  }
+  // p strictly between the end points of C (p known to be on C's line).
+  static bool strictly_within(const Curve& C, const P2& p) {
+    return CGAL::collinear_are_strictly_ordered_along_line(C.s.xy(), p, C.t.xy());
+  }
+
+  void intersect(int ci, int di) {
+    const Curve &C = ss.curves[ci], &D = ss.curves[di];
+    if (!CGAL::do_overlap(C.box, D.box)) return;
+    ++pairs;
+    const P2 cs = C.s.xy(), ct = C.t.xy(), ds = D.s.xy(), dt = D.t.xy();
+    // End points known to be the same vertex need no predicate.
+    auto same = [](long a, long b) { return a >= 0 && a == b; };
+    const bool shared = same(C.vs, D.vs) || same(C.vs, D.vt) || same(C.vt, D.vs) || same(C.vt, D.vt);
+    if (shared) {
+      // C = [p, a], D = [p, b]: they meet only at p unless collinear and pointing the
+      // same way; then the longer is cut where the shorter ends. Their depths agree
+      // at p, so the depth order cannot change inside the common part.
+      const bool ps = same(C.vs, D.vs) || same(C.vs, D.vt);
+      const P2 p = ps ? cs : ct, a = ps ? ct : cs;
+      const P2 b = (same(C.vs, D.vs) || same(C.vt, D.vs)) ? dt : ds;
+      if (CGAL::orientation(p, a, b) != CGAL::COLLINEAR || !CGAL::is_positive((a - p) * (b - p))) return;
+      if (strictly_within(C, b)) cut(ci, b);
+      else if (strictly_within(D, a)) cut(di, a);
+      return;
+    }
+    auto o1 = CGAL::orientation(cs, ct, ds), o2 = CGAL::orientation(cs, ct, dt);
+    if (o1 != CGAL::COLLINEAR && o1 == o2) return;
+    if (o1 == CGAL::COLLINEAR && o2 == CGAL::COLLINEAR) { overlap(ci, di); return; }
+    auto o3 = CGAL::orientation(ds, dt, cs), o4 = CGAL::orientation(ds, dt, ct);
+    if (o3 != CGAL::COLLINEAR && o3 == o4) return;
+    if (o1 * o2 < 0 && o3 * o4 < 0) {   // proper crossing
+      V2 u = ct - cs, v = dt - ds, w = ds - cs;
+      FT lambda = (w.x() * v.y() - w.y() * v.x()) / (u.x() * v.y() - u.y() * v.x());
+      P2 p = cs + lambda * u;
+      ++crossings;
+      cut(ci, p);
+      cut(di, p);
+      return;
+    }
+    // T-junctions: an end point of one lies inside the other.
+    if (o1 == CGAL::COLLINEAR && strictly_within(C, ds)) cut(ci, ds);
+    if (o2 == CGAL::COLLINEAR && strictly_within(C, dt)) cut(ci, dt);
+    if (o3 == CGAL::COLLINEAR && strictly_within(D, cs)) cut(di, cs);
+    if (o4 == CGAL::COLLINEAR && strictly_within(D, ct)) cut(di, ct);
+  }
+
+  // Collinear curves: cut each at the other's end points inside it, and both where
+  // their depths cross, so that the first in depth order is constant on each piece.
+  void overlap(int ci, int di) {
+    const Curve &C = ss.curves[ci], &D = ss.curves[di];
+    const P2 cs = C.s.xy(), ct = C.t.xy(), ds = D.s.xy(), dt = D.t.xy();
+    std::array<P2, 4> pts{cs, ct, ds, dt};
+    std::sort(pts.begin(), pts.end());   // lexicographic: along the line
+    // Common part: the middle two, if C and D really overlap.
+    const P2 &lo = pts[1], &hi = pts[2];
+    if (!(lo < hi)) return;
+    auto inside = [](const P2& a, const P2& b, const P2& p) { return CGAL::collinear_are_ordered_along_line(a, p, b); };
+    if (!(inside(cs, ct, lo) && inside(cs, ct, hi) && inside(ds, dt, lo) && inside(ds, dt, hi))) return;
+    for (const P2& p : {ds, dt}) if (strictly_within(C, p)) cut(ci, p);
+    for (const P2& p : {cs, ct}) if (strictly_within(D, p)) cut(di, p);
+    P2 x;
+    if (depth_crossing(C, D, lo, hi, x)) { cut(ci, x); cut(di, x); ++crossings; }
+  }
+};
+
+}  // namespace
+
+// Step 8: in each cell, every pair of curves; an intersection counts in the cell
+// holding it (half-open cells), so each is found once.
+std::vector<std::vector<P2>> cut_curves(Grid& g, const ScreenScene& ss, Stats& stats) {
+  std::vector<std::vector<P2>> cuts(ss.curves.size());
+  Cutter cutter{g, ss, cuts, 0, 0};
+  for (int iy = 0; iy < g.B; ++iy)
+    for (int ix = 0; ix < g.B; ++ix) {
+      cutter.ix = ix;
+      cutter.iy = iy;
+      const auto& cs = g.at(ix, iy).curves;
+      for (std::size_t i = 0; i < cs.size(); ++i)
+        for (std::size_t j = i + 1; j < cs.size(); ++j) cutter.intersect(cs[i], cs[j]);
+    }
+  stats.count("edge_pairs_tested", cutter.pairs);
+  stats.count("intersections", cutter.crossings);
+  return cuts;
+}
+
+namespace {
+
+// What one facet contributes at a point m of a curve: whether it covers the
+// points just left / right of m, and its depth there.
+struct Cover {
+  int facet;
+  bool left, right;
+  FT depth, slope;   // depth at m; its rate along the left normal
+};
+
+bool cover_at(const Facet& f, const P2& m, const V2& dir, Cover& out) {
+  const std::size_t n = f.v.size();
+  bool left = true, right = true;
+  for (std::size_t k = 0; k < n && (left || right); ++k) {
+    const P2 p = f.v[k].xy(), q = f.v[(k + 1) % n].xy();
+    int o = CGAL::orientation(p, q, m) * turn(f);
+    if (o > 0) continue;
+    if (o < 0) return false;
+    // m on this edge's line: the facet lies on one side of it. Which side of the
+    // curve that is follows from the edge's direction relative to the curve's.
+    int s = CGAL::sign((q - p) * dir) * turn(f);
+    if (s <= 0) left = false;
+    if (s >= 0) right = false;
+  }
+  if (!left && !right) return false;
+  out.facet = -1;
+  out.left = left;
+  out.right = right;
+  out.depth = f.depth_at(m);
+  out.slope = f.b * dir.x() - f.a * dir.y();   // gradient . (-dy, dx)
+  return true;
+}
+
+// Order just beside m on one side: depth, then how fast depth grows that way, then index.
+bool before(const Cover& x, int fx, const Cover& y, int fy, bool left_side) {
+  auto c = CGAL::compare(x.depth, y.depth);
+  if (c != CGAL::EQUAL) return c == CGAL::SMALLER;
+  c = left_side ? CGAL::compare(x.slope, y.slope) : CGAL::compare(y.slope, x.slope);
+  if (c != CGAL::EQUAL) return c == CGAL::SMALLER;
+  return fx < fy;
+}
+
+}  // namespace
+
+// Steps 9 and 11: cut each curve at its sorted cut points; decide each piece at its
+// midpoint against the facets of the midpoint's cell: is it visible, which faces are
+// nearest on each side, and does this curve bound a region there.
+std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss,
+                                          std::vector<std::vector<P2>>& cuts, Stats& stats) {
+  std::vector<VisiblePiece> out;
+  std::vector<Cover> covers;
+  std::int64_t pieces = 0, visible = 0;
+  for (int ci = 0; ci < static_cast<int>(ss.curves.size()); ++ci) {
+    const Curve& cv = ss.curves[ci];
+    std::vector<P2>& pts = cuts[ci];
+    const P2 s = cv.s.xy(), t = cv.t.xy();
+    // 9a: sort along the curve (the order of the dominant coordinate).
+    const bool use_x = CGAL::compare(CGAL::abs(t.x() - s.x()), CGAL::abs(t.y() - s.y())) != CGAL::SMALLER;
+    const bool increasing = use_x ? s.x() < t.x() : s.y() < t.y();
+    auto key_less = [&](const P2& a, const P2& b) {
+      bool lt = use_x ? a.x() < b.x() : a.y() < b.y();
+      bool gt = use_x ? a.x() > b.x() : a.y() > b.y();
+      return increasing ? lt : gt;
+    };
+    std::sort(pts.begin(), pts.end(), key_less);
+    pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+    pts.insert(pts.begin(), s);
+    pts.push_back(t);
+    const V2 dir = t - s;
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+      ++pieces;
+      const P2 m = CGAL::midpoint(pts[k], pts[k + 1]);
+      Cell& cell = g.at(exact_cell_index(g.X, m.x()), exact_cell_index(g.Y, m.y()));
+      covers.clear();
+      auto consider = [&](int fi) {
+        Cover c;
+        if (cover_at(ss.facets[fi], m, dir, c)) { c.facet = fi; covers.push_back(c); }
+      };
+      for (int fi : cell.facets) consider(fi);
+      if (cell.blocker >= 0) consider(cell.blocker);
+      // Nearest face on each side (step 11).
+      int bl = -1, br = -1;
+      for (std::size_t i = 0; i < covers.size(); ++i) {
+        const int fi = ss.facets[covers[i].facet].face;
+        if (covers[i].left && (bl < 0 || before(covers[i], fi, covers[bl], ss.facets[covers[bl].facet].face, true))) bl = static_cast<int>(i);
+        if (covers[i].right && (br < 0 || before(covers[i], fi, covers[br], ss.facets[covers[br].facet].face, false))) br = static_cast<int>(i);
+      }
+      VisiblePiece vp;
+      vp.a = pts[k];
+      vp.b = pts[k + 1];
+      vp.curve = ci;
+      vp.left = bl < 0 ? -1 : ss.facets[covers[bl].facet].face;
+      vp.right = br < 0 ? -1 : ss.facets[covers[br].facet].face;
+      if (vp.left != vp.right) {
+        auto responsible = [&](int i) {
+          return i >= 0 && std::find(cv.sharers.begin(), cv.sharers.end(), covers[i].facet) != cv.sharers.end();
+        };
+        vp.boundary = cv.kind == EdgeKind::Intersection && cv.drawn ? (responsible(bl) && responsible(br))
+                                                                     : (responsible(bl) || responsible(br));
+      }
+      // 9c: visible unless a face not sharing the curve covers both sides of m and
+      // comes before it in (depth, face index).
+      if (cv.drawn) {
+        vp.visible = true;
+        const FT zm = depth_on(cv, m);
+        for (std::size_t i = 0; i < covers.size() && vp.visible; ++i) {
+          const int face = ss.facets[covers[i].facet].face;
+          if (std::binary_search(cv.faces.begin(), cv.faces.end(), face)) continue;
+          auto c = CGAL::compare(covers[i].depth, zm);
+          if (!(c == CGAL::SMALLER || (c == CGAL::EQUAL && face < cv.order_face))) continue;
+          bool both = covers[i].left && covers[i].right;
+          for (std::size_t j = 0; j < covers.size() && !both; ++j)   // two facets of one polygon
+            if (j != i && ss.facets[covers[j].facet].face == face)
+              both = (covers[i].left || covers[j].left) && (covers[i].right || covers[j].right);
+          if (both) vp.visible = false;
+        }
+      }
+      visible += vp.visible;
+      if (vp.visible || vp.boundary) out.push_back(std::move(vp));
+    }
+  }
+  stats.count("pieces", pieces);
+  stats.count("visible_pieces", visible);
+  return out;
+}
+
+}  // namespace vismap::engine

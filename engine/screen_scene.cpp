@@ -1,1 +1,240 @@
-// placeholder
+#include "engine/screen_scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/culling.h"
+#include "engine/edge_pieces.h"
+
+namespace vismap::engine {
+namespace {
+
+struct Homogeneous {
+  FT X, Y, Z, W;
+};
+
+Homogeneous transform(const View& view, const FT& x, const FT& y, const FT& z) {
+  const auto& m = view.m;
+  auto row = [&](int r) { return FT(m[r][0]) * x + FT(m[r][1]) * y + FT(m[r][2]) * z + FT(m[r][3]); };
+  if (!view.perspective) return {row(0), row(1), row(2), FT(1)};
+  return {row(0), row(1), row(2), row(3)};
+}
+
+P3 to_screen(const View& view, const Homogeneous& h) {
+  if (!view.perspective) return P3{h.X, h.Y, h.Z};
+  return P3{h.X / h.W, h.Y / h.W, h.Z / h.W};
+}
+
+bool in_front(const View& view, const Homogeneous& h) {
+  return !view.perspective || (CGAL::is_positive(h.Z) && CGAL::is_positive(h.W));
+}
+
+CGAL::Bbox_2 box_of(const P3& p) {
+  auto ix = CGAL::to_interval(p.x), iy = CGAL::to_interval(p.y);
+  return CGAL::Bbox_2(ix.first, iy.first, ix.second, iy.second);
+}
+
+// World point on segment p->q where the near plane (Z = 0) cuts it.
+struct WorldPoint {
+  FT x, y, z;
+};
+WorldPoint cut_at_near(const WorldPoint& p, const WorldPoint& q, const FT& zp, const FT& zq) {
+  FT t = zp / (zp - zq);
+  return {p.x + t * (q.x - p.x), p.y + t * (q.y - p.y), p.z + t * (q.z - p.z)};
+}
+
+// Exact crease test n1.n2 < c |n1||n2| without square roots.
+bool is_crease(const std::array<FT, 3>& n1, const std::array<FT, 3>& n2, double cos_angle) {
+  FT d = n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2];
+  FT c(cos_angle);
+  FT l = (n1[0] * n1[0] + n1[1] * n1[1] + n1[2] * n1[2]) * (n2[0] * n2[0] + n2[1] * n2[1] + n2[2] * n2[2]);
+  if (!CGAL::is_negative(c)) return CGAL::is_negative(d) || d * d < c * c * l;
+  return CGAL::is_negative(d) && d * d > c * c * l;
+}
+
+}  // namespace
+
+FT depth_on(const Curve& c, const P2& p) {
+  // Interpolate along the dominant screen axis of the curve.
+  const bool use_x = CGAL::compare(CGAL::abs(c.t.x - c.s.x), CGAL::abs(c.t.y - c.s.y)) != CGAL::SMALLER;
+  FT lambda = use_x ? (p.x() - c.s.x) / (c.t.x - c.s.x) : (p.y() - c.s.y) / (c.t.y - c.s.y);
+  return c.s.z + lambda * (c.t.z - c.s.z);
+}
+
+ScreenScene make_screen_scene(const Scene& scene, const View& view, const EngineOptions& opt,
+                              Stats& stats) {
+  WorldFacets wf = make_world_facets(scene);
+  std::vector<WorldPiece> pieces = match_edges(scene, wf);
+  stats.count("faces_degenerate_dropped", wf.degenerate);
+  stats.count("faces_nonplanar_fanned", wf.nonplanar);
+  stats.count("faces_nonconvex_triangulated", wf.nonconvex);
+  stats.count("facets", static_cast<std::int64_t>(wf.facets.size()));
+
+  // Each vertex is transformed once.
+  std::vector<std::uint32_t> used;
+  std::vector<char> is_used(scene.vertices.size(), 0);
+  for (const auto& f : wf.facets)
+    for (auto id : f.v) if (!is_used[id]) { is_used[id] = 1; used.push_back(id); }
+  std::vector<Homogeneous> hv(scene.vertices.size());
+  std::vector<P3> sv(scene.vertices.size());
+  std::vector<char> front(scene.vertices.size(), 0);
+  for (auto id : used) {
+    const Vec3& p = scene.vertices[id];
+    hv[id] = transform(view, FT(p.x), FT(p.y), FT(p.z));
+    front[id] = in_front(view, hv[id]);
+    if (front[id]) sv[id] = to_screen(view, hv[id]);
+  }
+  auto world = [&](std::uint32_t id) {
+    const Vec3& p = scene.vertices[id];
+    return WorldPoint{FT(p.x), FT(p.y), FT(p.z)};
+  };
+  auto clip_point = [&](std::uint32_t a, std::uint32_t b) {
+    WorldPoint w = cut_at_near(world(a), world(b), hv[a].Z, hv[b].Z);
+    Homogeneous h = transform(view, w.x, w.y, w.z);
+    return P3{h.X / h.W, h.Y / h.W, FT(0)};   // on the near plane: depth 0 exactly
+  };
+
+  ScreenScene ss;
+  ss.facets.resize(wf.facets.size());
+  std::vector<std::vector<P3>> clip_edges(wf.facets.size());  // near-plane cuts
+  std::int64_t outside = 0, edge_on = 0;
+  for (std::size_t fi = 0; fi < wf.facets.size(); ++fi) {
+    const WorldFacet& w = wf.facets[fi];
+    Facet& f = ss.facets[fi];
+    f.face = w.face;
+    const std::size_t n = w.v.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      std::uint32_t a = w.v[k], b = w.v[(k + 1) % n];
+      if (front[a]) f.v.push_back(sv[a]);
+      if (front[a] != front[b]) {
+        f.v.push_back(front[a] ? clip_point(a, b) : clip_point(b, a));
+        // The cut runs from where the polygon leaves the front half-space to where it re-enters.
+        if (front[a]) clip_edges[fi].push_back(f.v.back());
+        else clip_edges[fi].insert(clip_edges[fi].begin(), f.v.back());
+      }
+    }
+    if (f.v.size() < 3) { f.v.clear(); ++outside; continue; }
+    // Facing: the sign of the projected area.
+    FT area2(0);
+    for (std::size_t k = 0; k < f.v.size(); ++k) {
+      const P3 &p = f.v[k], &q = f.v[(k + 1) % f.v.size()];
+      area2 += p.x * q.y - q.x * p.y;
+    }
+    auto s = CGAL::sign(area2);
+    f.facing = s > 0 ? Facing::Front : s < 0 ? Facing::Back : Facing::EdgeOn;
+    if (f.facing == Facing::EdgeOn) { ++edge_on; continue; }
+    // depth = a x + b y + c from three vertices that are not collinear on screen.
+    const P3& p0 = f.v[0];
+    for (std::size_t k = 1; k + 1 < f.v.size(); ++k) {
+      const P3 &p1 = f.v[k], &p2 = f.v[k + 1];
+      FT nz = (p1.x - p0.x) * (p2.y - p0.y) - (p1.y - p0.y) * (p2.x - p0.x);
+      if (CGAL::is_zero(nz)) continue;
+      FT nx = (p1.y - p0.y) * (p2.z - p0.z) - (p1.z - p0.z) * (p2.y - p0.y);
+      FT ny = (p1.z - p0.z) * (p2.x - p0.x) - (p1.x - p0.x) * (p2.z - p0.z);
+      f.a = -nx / nz;
+      f.b = -ny / nz;
+      f.c = p0.z - f.a * p0.x - f.b * p0.y;
+      break;
+    }
+    f.box = box_of(f.v[0]);
+    for (const auto& p : f.v) f.box += box_of(p);
+    f.occluder = true;
+  }
+  stats.count("culled_outside_view", outside);
+  stats.count("culled_edge_on", edge_on);
+
+  // Back faces of closed components seen from outside hide nothing that their
+  // component's front faces do not already hide.
+  auto side = closed_component_sides(scene, wf, pieces, view, [&](std::uint32_t id) { return front[id] != 0; });
+  std::int64_t back = 0;
+  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) {
+    Facet& f = ss.facets[fi];
+    if (!f.occluder || side[fi] == 0) continue;
+    if ((side[fi] > 0 && f.facing == Facing::Back) || (side[fi] < 0 && f.facing == Facing::Front)) {
+      f.occluder = false;
+      ++back;
+    }
+  }
+  stats.count("culled_back_faces", back);
+
+  // World normals, for the crease angle.
+  auto normal = [&](int fi) {
+    const auto& v = wf.facets[fi].v;
+    const Vec3& o = scene.vertices[v[0]];
+    for (std::size_t k = 1; k + 1 < v.size(); ++k) {
+      const Vec3 &p = scene.vertices[v[k]], &q = scene.vertices[v[k + 1]];
+      FT ax = FT(p.x) - o.x, ay = FT(p.y) - o.y, az = FT(p.z) - o.z;
+      FT bx = FT(q.x) - o.x, by = FT(q.y) - o.y, bz = FT(q.z) - o.z;
+      std::array<FT, 3> nn{ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx};
+      if (!CGAL::is_zero(nn[0]) || !CGAL::is_zero(nn[1]) || !CGAL::is_zero(nn[2])) return nn;
+    }
+    return std::array<FT, 3>{FT(0), FT(0), FT(0)};
+  };
+
+  const double cos_crease = std::cos(opt.crease_deg * M_PI / 180);
+  std::int64_t dropped_hidden = 0, dropped_clipped = 0, dropped_point = 0;
+  for (const WorldPiece& wp : pieces) {
+    Curve c;
+    bool any_occluder = false;
+    for (const Sharer& s : wp.sharers) {
+      c.sharers.push_back(s.facet);
+      if (wf.facets[s.facet].role[s.edge] == EdgeRole::Boundary) c.faces.push_back(wf.facets[s.facet].face);
+      const Facet& f = ss.facets[s.facet];
+      any_occluder |= f.occluder || (!f.v.empty() && f.facing == Facing::EdgeOn);
+    }
+    // Every facet sharing it is a culled back face: hidden (or coincident with a
+    // nearer visible line on screen), so it cannot change the map.
+    if (!any_occluder) { ++dropped_hidden; continue; }
+    std::sort(c.faces.begin(), c.faces.end());
+    c.faces.erase(std::unique(c.faces.begin(), c.faces.end()), c.faces.end());
+    // Kind, from the faces sharing the piece.
+    if (c.faces.size() == 1) c.kind = EdgeKind::Border;
+    else if (c.faces.size() >= 3) c.kind = EdgeKind::Crease;
+    else if (c.faces.size() == 2) {
+      int fa = -1, fb = -1;   // one facet of each face
+      for (const Sharer& s : wp.sharers) {
+        if (wf.facets[s.facet].role[s.edge] != EdgeRole::Boundary) continue;
+        if (wf.facets[s.facet].face == c.faces[0] && fa < 0) fa = s.facet;
+        if (wf.facets[s.facet].face == c.faces[1] && fb < 0) fb = s.facet;
+      }
+      auto facing = [&](int fi) { return ss.facets[fi].v.empty() ? Facing::EdgeOn : ss.facets[fi].facing; };
+      Facing ga = facing(fa), gb = facing(fb);
+      if ((ga == Facing::Front) != (gb == Facing::Front)) c.kind = EdgeKind::Silhouette;
+      else if (ga == gb && ga != Facing::EdgeOn)
+        c.kind = is_crease(normal(fa), normal(fb), cos_crease) ? EdgeKind::Crease : EdgeKind::Smooth;
+      else c.kind = EdgeKind::Smooth;
+    }
+    c.drawn = !c.faces.empty() && (c.kind != EdgeKind::Smooth || opt.smooth);
+    c.order_face = c.faces.empty() ? ss.facets[c.sharers[0]].face : c.faces[0];
+    for (int s : c.sharers) c.order_face = std::min(c.order_face, c.faces.empty() ? ss.facets[s].face : c.order_face);
+    // Clip at the near plane, project.
+    std::uint32_t a = wp.a, b = wp.b;
+    if (!front[a] && !front[b]) { ++dropped_clipped; continue; }
+    c.s = front[a] ? sv[a] : clip_point(b, a);
+    c.t = front[b] ? sv[b] : clip_point(a, b);
+    c.vs = front[a] ? static_cast<long>(a) : -1;
+    c.vt = front[b] ? static_cast<long>(b) : -1;
+    if (c.s.xy() == c.t.xy()) { ++dropped_point; continue; }   // seen end-on
+    c.box = box_of(c.s) + box_of(c.t);
+    ss.curves.push_back(std::move(c));
+  }
+  // The near-plane cut of a facet bounds its region but is never drawn.
+  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) {
+    const auto& ce = clip_edges[fi];
+    if (ce.size() != 2 || !ss.facets[fi].occluder || ce[0].xy() == ce[1].xy()) continue;
+    Curve c;
+    c.s = ce[0];
+    c.t = ce[1];
+    c.sharers = {static_cast<int>(fi)};
+    c.order_face = ss.facets[fi].face;
+    c.box = box_of(c.s) + box_of(c.t);
+    ss.curves.push_back(std::move(c));
+  }
+  stats.count("edge_pieces", static_cast<std::int64_t>(pieces.size()));
+  stats.count("edges_culled_back", dropped_hidden);
+  stats.count("edges_culled_outside_view", dropped_clipped);
+  stats.count("edges_seen_end_on", dropped_point);
+  return ss;
+}
+
+}  // namespace vismap::engine

@@ -1,0 +1,25 @@
+// Stage 2: edges matched geometrically in world space. Wherever facet boundaries
+// overlap along a segment in 3D (same end points, T-junctions, polygon soups)
+// they share one edge piece. Exact: lines are grouped by an exact rational key.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "engine/world_facets.h"
+
+namespace vismap::engine {
+
+struct Sharer {
+  int facet;
+  std::uint8_t edge;   // facet edge index (v[edge] -> v[edge+1])
+  bool forward;        // the facet's edge runs from a to b
+};
+
+struct WorldPiece {
+  std::uint32_t a, b;             // canonical vertex ids of the end points
+  std::vector<Sharer> sharers;    // every facet edge covering the piece
+};
+
+std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf);
+
+}  // namespace vismap::engine

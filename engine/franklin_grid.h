@@ -1,0 +1,40 @@
+// Franklin's variable grid (steps 2-9, 11), exact. Internal to the engine.
+#pragma once
+#include <vector>
+
+#include "engine/screen_scene.h"
+
+namespace vismap::engine {
+
+struct Cell {
+  int blocker = -1;             // step 3a: closest facet covering the whole cell
+  std::vector<int> facets;      // step 3b: facets meeting the cell, not behind the blocker
+  std::vector<int> curves;      // step 3c: curves meeting the cell, not behind the blocker
+};
+
+struct Grid {
+  int B = 1;                    // cells per side
+  std::vector<double> X, Y;     // B+1 cell boundaries each (exact doubles)
+  std::vector<Cell> cells;      // row-major: cells[iy * B + ix]
+  Cell& at(int ix, int iy) { return cells[static_cast<std::size_t>(iy) * B + ix]; }
+};
+
+// A piece of a curve between consecutive cut points, classified at its midpoint.
+struct VisiblePiece {
+  P2 a, b;                      // along the curve's direction s -> t
+  int curve = -1;
+  int left = -1, right = -1;    // nearest face just left / right of the piece (-1: none)
+  bool visible = false;         // drawn curve, not hidden at its interior
+  bool boundary = false;        // this curve bounds a region here
+};
+
+Grid make_grid(const ScreenScene& ss, double c, Stats& stats);                    // steps 2-4
+void bucket_facets(Grid& g, ScreenScene& ss, Stats& stats);                       // step 5
+void prune_facets(Grid& g, const ScreenScene& ss, Stats& stats);                  // step 6
+void add_intersection_lines(Grid& g, ScreenScene& ss, Stats& stats);              // faces piercing each other
+void bucket_curves(Grid& g, const ScreenScene& ss, Stats& stats);                 // step 7
+std::vector<std::vector<P2>> cut_curves(Grid& g, const ScreenScene& ss, Stats& stats);   // step 8
+std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss,
+                                          std::vector<std::vector<P2>>& cuts, Stats& stats);  // steps 9, 11
+
+}  // namespace vismap::engine

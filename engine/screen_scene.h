@@ -1,0 +1,53 @@
+// Stage 4: the scene in screen space (x, y, depth), exact. Facets are projected
+// (and clipped at the near plane), edge pieces get their kinds, and everything a
+// scene does not need is dropped and counted. Internal to the engine (CGAL types).
+#pragma once
+#include <CGAL/Bbox_2.h>
+
+#include <vector>
+
+#include "arrangements/visibility_map.h"
+#include "engine/exact_kernel.h"
+#include "engine/visibility.h"
+#include "engine/world_facets.h"
+
+namespace vismap::engine {
+using namespace vismap::exact;
+
+enum class Facing : std::uint8_t { Front, Back, EdgeOn };
+
+struct Facet {
+  int face = -1;                 // input face index
+  std::vector<P3> v;             // convex polygon, screen space, input order
+  Facing facing = Facing::EdgeOn;
+  FT a, b, c;                    // depth(x, y) = a x + b y + c   (not edge-on)
+  CGAL::Bbox_2 box;              // contains the exact projection
+  bool occluder = false;         // hides and labels: not edge-on, not culled
+  FT depth_at(const P2& p) const { return a * p.x() + b * p.y() + c; }
+};
+
+// A line that may be drawn or bound a region: an edge piece, or (added by the
+// engine) the intersection line of two facets.
+struct Curve {
+  P3 s, t;                       // screen end points with depth
+  long vs = -1, vt = -1;         // end point identity (canonical vertex id) or -1
+  std::vector<int> sharers;      // facets whose boundary it is (for intersections: the two facets)
+  std::vector<int> faces;        // faces written in the JSON, ascending; empty = never drawn
+  EdgeKind kind = EdgeKind::Border;
+  bool drawn = false;
+  int order_face = 0;            // lowest face index: ties in (depth, face index)
+  CGAL::Bbox_2 box;
+};
+
+struct ScreenScene {
+  std::vector<Facet> facets;
+  std::vector<Curve> curves;
+};
+
+ScreenScene make_screen_scene(const Scene& scene, const View& view, const EngineOptions& opt,
+                              Stats& stats);
+
+// Depth along a curve at a screen point p on it (depth is affine along a screen line).
+FT depth_on(const Curve& c, const P2& p);
+
+}  // namespace vismap::engine

@@ -1,0 +1,197 @@
+#include "engine/world_facets.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <algorithm>
+#include <unordered_map>
+
+namespace vismap::engine {
+namespace {
+
+// Inputs are doubles, so Epick's filtered predicates are exact on them.
+using KI = CGAL::Epick;
+using Q3 = KI::Point_3;
+using Q2 = KI::Point_2;
+
+Q3 q3(const Vec3& p) { return Q3(p.x, p.y, p.z); }
+
+// Index of the first vertex c such that v[0], v[b], v[c] are not collinear, with b
+// the first vertex distinct from v[0]; -1 when all are collinear.
+bool find_plane(const std::vector<Q3>& p, std::size_t& i1, std::size_t& i2) {
+  for (i1 = 1; i1 < p.size() && p[i1] == p[0]; ++i1) {}
+  for (i2 = i1 + 1; i2 < p.size(); ++i2)
+    if (!CGAL::collinear(p[0], p[i1], p[i2])) return true;
+  return false;
+}
+
+// Projection to the coordinate plane that keeps the polygon's area: drop the axis
+// along which the normal is largest (exact: compare the normal's components).
+int dominant_axis(const Q3& a, const Q3& b, const Q3& c) {
+  // Orientation of the projections onto the yz, zx, xy planes are the signs of the
+  // normal's components; pick the first axis whose projection is not degenerate,
+  // preferring the one with the largest magnitude in doubles (any non-zero works).
+  double nx = (b.y() - a.y()) * (c.z() - a.z()) - (b.z() - a.z()) * (c.y() - a.y());
+  double ny = (b.z() - a.z()) * (c.x() - a.x()) - (b.x() - a.x()) * (c.z() - a.z());
+  double nz = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+  int order[3] = {0, 1, 2};
+  double mag[3] = {std::abs(nx), std::abs(ny), std::abs(nz)};
+  std::sort(order, order + 3, [&](int i, int j) { return mag[i] > mag[j]; });
+  for (int axis : order) {
+    auto drop = [axis](const Q3& p) {
+      return axis == 0 ? Q2(p.y(), p.z()) : axis == 1 ? Q2(p.z(), p.x()) : Q2(p.x(), p.y());
+    };
+    if (CGAL::orientation(drop(a), drop(b), drop(c)) != CGAL::COLLINEAR) return axis;
+  }
+  return 2;  // unreachable for non-collinear a, b, c
+}
+
+Q2 drop_axis(const Q3& p, int axis) {
+  return axis == 0 ? Q2(p.y(), p.z()) : axis == 1 ? Q2(p.z(), p.x()) : Q2(p.x(), p.y());
+}
+
+// Convex and simple: every turn has the same sign (straight turns allowed) and the
+// boundary winds once (edge directions change x-sign at most twice).
+bool is_convex(const std::vector<Q2>& q, CGAL::Orientation& turn) {
+  const std::size_t n = q.size();
+  turn = CGAL::COLLINEAR;
+  for (std::size_t i = 0; i < n; ++i) {
+    auto o = CGAL::orientation(q[i], q[(i + 1) % n], q[(i + 2) % n]);
+    if (o == CGAL::COLLINEAR) {
+      // A straight vertex is fine unless the boundary folds back on itself.
+      const Q2 &a = q[i], &b = q[(i + 1) % n], &c = q[(i + 2) % n];
+      if ((b.x() - a.x()) * (c.x() - b.x()) + (b.y() - a.y()) * (c.y() - b.y()) < 0) return false;
+      continue;
+    }
+    if (turn == CGAL::COLLINEAR) turn = o;
+    else if (o != turn) return false;
+  }
+  int changes = 0, last = 0;
+  for (std::size_t i = 0; i <= n; ++i) {
+    const Q2 &a = q[i % n], &b = q[(i + 1) % n];
+    int s = CGAL::compare(a.x(), b.x());
+    if (s == 0) continue;
+    if (last != 0 && s != last) ++changes;
+    last = s;
+  }
+  return turn != CGAL::COLLINEAR && changes <= 2;
+}
+
+// Ear clipping with exact predicates. Returns false when no ear is found (a
+// self-intersecting polygon), in which case the caller falls back to a fan.
+bool ear_clip(const std::vector<Q2>& q, CGAL::Orientation turn,
+              std::vector<std::array<std::size_t, 3>>& tris) {
+  std::vector<std::size_t> idx(q.size());
+  for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
+  while (idx.size() > 3) {
+    bool found = false;
+    for (std::size_t k = 0; k < idx.size() && !found; ++k) {
+      std::size_t ia = idx[(k + idx.size() - 1) % idx.size()], ib = idx[k], ic = idx[(k + 1) % idx.size()];
+      if (CGAL::orientation(q[ia], q[ib], q[ic]) != turn) continue;
+      bool empty = true;
+      for (std::size_t j : idx) {
+        if (j == ia || j == ib || j == ic) continue;
+        // A vertex inside or on the candidate ear blocks it.
+        auto o1 = CGAL::orientation(q[ia], q[ib], q[j]), o2 = CGAL::orientation(q[ib], q[ic], q[j]),
+             o3 = CGAL::orientation(q[ic], q[ia], q[j]);
+        if (o1 != -turn && o2 != -turn && o3 != -turn) { empty = false; break; }
+      }
+      if (!empty) continue;
+      tris.push_back({ia, ib, ic});
+      idx.erase(idx.begin() + k);
+      found = true;
+    }
+    if (!found) return false;
+  }
+  if (CGAL::orientation(q[idx[0]], q[idx[1]], q[idx[2]]) != CGAL::COLLINEAR)
+    tris.push_back({idx[0], idx[1], idx[2]});
+  return true;
+}
+
+// A triangle (a, b, c) of polygon positions; an edge is the polygon's own when its
+// end points are consecutive around the polygon.
+WorldFacet triangle_facet(int face, const std::vector<std::uint32_t>& ids, std::size_t n,
+                          std::size_t a, std::size_t b, std::size_t c) {
+  auto role = [n](std::size_t i, std::size_t j) {
+    return (j == (i + 1) % n) ? EdgeRole::Boundary : EdgeRole::Internal;
+  };
+  return WorldFacet{face, {ids[a], ids[b], ids[c]}, {role(a, b), role(b, c), role(c, a)}};
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> canonical_vertex_ids(const Scene& scene) {
+  struct Hash {
+    std::size_t operator()(const Vec3& p) const {
+      auto h = [](double d) { return std::hash<double>()(d + 0.0); };  // -0 == +0
+      return h(p.x) * 0x9E3779B97F4A7C15ull ^ h(p.y) * 0xC2B2AE3D27D4EB4Full ^ h(p.z);
+    }
+  };
+  struct Eq {
+    bool operator()(const Vec3& a, const Vec3& b) const { return a.x == b.x && a.y == b.y && a.z == b.z; }
+  };
+  std::unordered_map<Vec3, std::uint32_t, Hash, Eq> first;
+  first.reserve(scene.vertices.size());
+  std::vector<std::uint32_t> canon(scene.vertices.size());
+  for (std::uint32_t i = 0; i < scene.vertices.size(); ++i)
+    canon[i] = first.emplace(scene.vertices[i], i).first->second;
+  return canon;
+}
+
+WorldFacets make_world_facets(const Scene& scene) {
+  WorldFacets out;
+  const std::vector<std::uint32_t> canon = canonical_vertex_ids(scene);
+  out.facets.reserve(scene.faces.size());
+  std::vector<std::uint32_t> ids;
+  std::vector<Q3> p;
+  for (std::size_t f = 0; f < scene.faces.size(); ++f) {
+    // Drop consecutive repeats (cyclically): they are the same vertex.
+    ids.clear();
+    p.clear();
+    for (auto i : scene.faces[f]) {
+      i = canon[i];
+      Q3 x = q3(scene.vertices[i]);
+      if (!p.empty() && p.back() == x) continue;
+      ids.push_back(i);
+      p.push_back(x);
+    }
+    while (p.size() > 1 && p.back() == p.front()) { p.pop_back(); ids.pop_back(); }
+    std::size_t i1, i2;
+    if (p.size() < 3 || !find_plane(p, i1, i2)) { ++out.degenerate; continue; }
+    const int face = static_cast<int>(f);
+    bool planar = true;
+    for (std::size_t k = 0; k < p.size() && planar; ++k)
+      planar = CGAL::orientation(p[0], p[i1], p[i2], p[k]) == CGAL::COPLANAR;
+    const std::size_t n = p.size();
+    if (planar) {
+      int axis = dominant_axis(p[0], p[i1], p[i2]);
+      std::vector<Q2> q(n);
+      for (std::size_t k = 0; k < n; ++k) q[k] = drop_axis(p[k], axis);
+      CGAL::Orientation turn;
+      if (is_convex(q, turn)) {
+        out.facets.push_back(WorldFacet{face, ids, std::vector<EdgeRole>(n, EdgeRole::Boundary)});
+        continue;
+      }
+      ++out.nonconvex;
+      // Orientation of the whole polygon decides which turn is convex.
+      KI::FT area2 = 0;
+      for (std::size_t k = 0; k < n; ++k)
+        area2 += q[k].x() * q[(k + 1) % n].y() - q[(k + 1) % n].x() * q[k].y();
+      // Sign in doubles is only a hint; ear_clip verifies every ear exactly.
+      CGAL::Orientation poly_turn = area2 > 0 ? CGAL::LEFT_TURN : CGAL::RIGHT_TURN;
+      std::vector<std::array<std::size_t, 3>> tris;
+      if (ear_clip(q, poly_turn, tris) || (tris.clear(), ear_clip(q, -poly_turn, tris))) {
+        for (auto& t : tris) out.facets.push_back(triangle_facet(face, ids, n, t[0], t[1], t[2]));
+        continue;
+      }
+    } else {
+      ++out.nonplanar;
+    }
+    // Fan from the first vertex; collinear pieces of the fan cover nothing.
+    for (std::size_t k = 1; k + 1 < n; ++k)
+      if (!CGAL::collinear(p[0], p[k], p[k + 1]))
+        out.facets.push_back(triangle_facet(face, ids, n, 0, k, k + 1));
+  }
+  return out;
+}
+
+}  // namespace vismap::engine

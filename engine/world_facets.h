@@ -1,0 +1,34 @@
+// Stage 1: input polygons -> convex planar facets in world space.
+// Degenerate polygons are dropped (counted); non-convex planar polygons are
+// triangulated by ear clipping, non-planar ones by a fan from the first vertex.
+// Every facet keeps its polygon's index; diagonals are marked internal.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "engine/scene.h"
+
+namespace vismap::engine {
+
+enum class EdgeRole : std::uint8_t {
+  Boundary,   // an edge of the input polygon: may be drawn
+  Internal,   // a diagonal inside one polygon: never drawn
+  Clip        // the near-plane cut of a perspective view: never drawn
+};
+
+struct WorldFacet {
+  int face = -1;                        // input face index
+  std::vector<std::uint32_t> v;         // input vertex ids, in the polygon's order
+  std::vector<EdgeRole> role;           // role[i]: edge v[i] -> v[i+1]
+};
+
+struct WorldFacets {
+  std::vector<WorldFacet> facets;
+  std::int64_t degenerate = 0, nonplanar = 0, nonconvex = 0;
+};
+
+// Vertex ids in facets are canonical: equal coordinates give one id, so that
+// polygon soups share end points by identity.
+WorldFacets make_world_facets(const Scene& scene);
+
+}  // namespace vismap::engine
