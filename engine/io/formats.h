@@ -1,0 +1,17 @@
+// One reader per mesh format, all over bytes already in memory. Internal to
+// vismap_io; read_scene.cpp picks one and fills Scene::file.
+#pragma once
+#include <string>
+#include <string_view>
+
+#include "engine/scene.h"
+
+namespace vismap::io {
+
+// Each appends to `out` (empty on entry) and throws InputError naming `name`.
+void read_off(std::string_view bytes, const std::string& name, const ReadLimits& limits, Scene& out);
+void read_obj(std::string_view bytes, const std::string& name, const ReadLimits& limits, Scene& out);
+void read_stl(std::string_view bytes, const std::string& name, const ReadLimits& limits, Scene& out);
+void read_ply(std::string_view bytes, const std::string& name, const ReadLimits& limits, Scene& out);
+
+}  // namespace vismap::io

@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Installs the Debian packages vismap needs, only those missing.
+set -euo pipefail
+pkgs=(cmake g++ make libcgal-dev libgmp-dev libmpfr-dev libboost-dev libgtest-dev libbenchmark-dev python3)
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "installing: ${missing[*]}" >&2
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
+fi
