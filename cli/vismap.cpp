@@ -35,7 +35,7 @@ lines:
   --crease DEG         dihedral angle making a shared edge a crease (default 30)
   --smooth             also draw smooth edges
 engine:
-  --grid-c C           Franklin's grid constant c, B = c*min(sqrt(N),1/L) (default 1)
+  --grid-c C           Franklin's grid constant c, B = c*min(sqrt(N),1/L) (default 4)
   --stats              print statistics on stderr and add phase timings to the
                        JSON (without it the JSON is byte-for-byte reproducible)
   -h, --help           this text

@@ -8,7 +8,7 @@ namespace vismap {
 
 struct EngineOptions {
   double crease_deg = 30;   // dihedral angle above which a shared edge is a crease
-  double grid_c = 1.0;      // Franklin's c in B = c * min(sqrt(N), 1/L)
+  double grid_c = 4.0;      // Franklin's c in B = c * min(sqrt(N), 1/L)
   bool smooth = false;      // also draw smooth edges
 };
 
