@@ -1,0 +1,49 @@
+// Exact planar primitives on GMP rationals. Every predicate is a sign of an
+// exact expression; nothing is rounded.
+#pragma once
+#include <gmpxx.h>
+
+#include <string>
+#include <vector>
+
+namespace vismap_check {
+
+struct P2 {
+  mpq_class x, y;
+};
+inline bool operator==(const P2& a, const P2& b) { return a.x == b.x && a.y == b.y; }
+inline bool operator!=(const P2& a, const P2& b) { return !(a == b); }
+
+std::string str(const P2& p);   // "(x, y)" with canonical rationals
+
+// (a - o) x (b - o): positive when o, a, b turn counter-clockwise.
+mpq_class cross(const P2& o, const P2& a, const P2& b);
+// d1 x d2 for two direction vectors.
+mpq_class cross_dir(const P2& d1, const P2& d2);
+inline int orient(const P2& o, const P2& a, const P2& b) { return sgn(cross(o, a, b)); }
+
+// q on the closed segment [a, b] (a == b allowed: then q == a).
+bool on_segment(const P2& q, const P2& a, const P2& b);
+
+// Twice the signed area (shoelace) of a closed ring given without its closing vertex.
+mpq_class area2(const std::vector<P2>& ring);
+
+struct Box {
+  mpq_class xmin, xmax, ymin, ymax;
+  bool contains(const P2& q) const { return xmin <= q.x && q.x <= xmax && ymin <= q.y && q.y <= ymax; }
+  bool meets(const Box& b) const {
+    return xmin <= b.xmax && b.xmin <= xmax && ymin <= b.ymax && b.ymin <= ymax;
+  }
+};
+Box box_of(const std::vector<P2>& pts);   // pts non-empty
+Box box_of(const P2& a, const P2& b);
+
+// Even-odd location of q against a closed ring: inside, outside, or on an edge.
+enum class Where { Outside, Inside, Boundary };
+Where locate(const P2& q, const std::vector<P2>& ring);
+
+// How two closed segments (each of positive length) meet.
+enum class Meet { None, Point, Overlap };
+Meet meet(const P2& a, const P2& b, const P2& c, const P2& d, P2* point = nullptr);
+
+}  // namespace vismap_check

@@ -1,0 +1,14 @@
+// Exact area of the union of the projected faces that are not edge-on.
+#pragma once
+#include <gmpxx.h>
+
+#include "tests/checker/screen.h"
+
+namespace vismap_check {
+
+// Vertical slabs between consecutive critical x (vertices and edge crossings):
+// inside a slab no two edges cross, so the covered set is a union of
+// trapezoids whose area is exact. Each piece is filled with the even-odd rule.
+mpq_class union_area(const Screen& sc);
+
+}  // namespace vismap_check

@@ -1,0 +1,172 @@
+// The Franklin engine against the independent brute-force checker, on the
+// degenerate corpus (through the command line, end to end) and on seeded random
+// scenes; plus the properties any correct engine has: the grid is scaffolding
+// only (the map does not depend on c), and runs are reproducible byte for byte.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "arrangements/json_writer.h"
+#include "bench/scene_gen.h"
+#include "engine/visibility.h"
+#include "tests/checker/checker.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using vismap::Vec3;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string report_text(const vismap_check::Report& r) {
+  std::string s;
+  for (const auto& f : r.failures) s += "  " + f + "\n";
+  return s;
+}
+
+// The map as JSON without the grid-dependent statistics.
+std::string map_json(const vismap::Scene& scene, const vismap::View& view, const vismap::EngineOptions& opt) {
+  vismap::VisibilityMap map = vismap::visibility_franklin(scene, view, opt);
+  map.stats = {};
+  return vismap::to_json(map);
+}
+
+void expect_checked(const vismap::Scene& scene, const std::string& json, const vismap_check::Options& opt,
+                    const std::string& what) {
+  vismap_check::Report r = vismap_check::check_map(scene, json, opt);
+  EXPECT_TRUE(r.ok) << what << ":\n" << report_text(r);
+  EXPECT_GT(r.samples_checked, 0u) << what;
+}
+
+// ---- the degenerate corpus, end to end ----------------------------------------
+
+struct Case {
+  std::string file, args;
+};
+
+std::vector<Case> corpus() {
+  std::vector<Case> cases;
+  std::ifstream in(fs::path(VISMAP_DATA_DIR) / "cases.txt");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    auto tab = line.find('\t');
+    cases.push_back({line.substr(0, tab), tab == std::string::npos ? "" : line.substr(tab + 1)});
+  }
+  return cases;
+}
+
+class Corpus : public ::testing::TestWithParam<Case> {};
+
+TEST_P(Corpus, CheckerAcceptsTheMapAndRunsAreReproducible) {
+  const Case& c = GetParam();
+  const fs::path scene = fs::path(VISMAP_DATA_DIR) / c.file;
+  const fs::path dir = fs::temp_directory_path() / ("vismap_corpus_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path out1 = dir / (c.file + ".1.json"), out2 = dir / (c.file + ".2.json");
+  for (const fs::path& out : {out1, out2}) {
+    std::string cmd = std::string(VISMAP_BIN) + " '" + scene.string() + "' " + c.args + " --json '" + out.string() + "'";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  }
+  const std::string json = slurp(out1);
+  EXPECT_EQ(json, slurp(out2)) << "two runs differ";
+  vismap_check::Options opt;
+  opt.smooth = c.args.find("--smooth") != std::string::npos;
+  if (auto k = c.args.find("--crease "); k != std::string::npos) opt.crease_deg = std::stod(c.args.substr(k + 9));
+  expect_checked(vismap::read_scene(scene.string()), json, opt, c.file);
+  fs::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(Degenerate, Corpus, ::testing::ValuesIn(corpus()),
+                         [](const auto& info) {
+                           std::string n = info.param.file.substr(0, info.param.file.find('.'));
+                           for (char& ch : n) if (!isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           return n;
+                         });
+
+// ---- seeded random scenes --------------------------------------------------------
+
+struct RandomCase {
+  std::string name;
+  vismap::Scene (*make)(std::uint64_t seed);
+  vismap::CameraSpec camera;
+};
+
+vismap::CameraSpec ortho(Vec3 d) { vismap::CameraSpec c; c.dir = d; return c; }
+vismap::CameraSpec persp(Vec3 eye, Vec3 target, double fov) {
+  vismap::CameraSpec c;
+  c.eye = eye;
+  c.target = target;
+  c.fov_deg = fov;
+  return c;
+}
+
+std::vector<RandomCase> random_cases() {
+  using namespace vismap::gen;
+  return {
+      {"squares_top", [](std::uint64_t s) { return random_squares_depth(40, 3, s); }, ortho({0, 0, -1})},
+      {"squares_oblique", [](std::uint64_t s) { return random_squares_depth(30, 4, s); }, ortho({-0.3, -0.5, -1})},
+      {"squares_perspective", [](std::uint64_t s) { return random_squares_depth(30, 3, s); },
+       persp({0.5, 0.5, 3}, {0.45, 0.55, 0}, 50)},
+      {"triangles", [](std::uint64_t s) { return random_triangles(30, 0.4, s); }, ortho({-1, -2, -1.5})},
+      {"triangles_perspective", [](std::uint64_t s) { return random_triangles(30, 0.4, s); },
+       persp({1.5, 2.2, 1.7}, {0.5, 0.5, 0.5}, 60)},
+      {"boxes", [](std::uint64_t s) { return interpenetrating_boxes(4, s); }, ortho({-1, -2, -1.5})},
+      {"boxes_perspective", [](std::uint64_t s) { return interpenetrating_boxes(4, s); },
+       persp({3, -4, 3.5}, {0, 0, 0}, 45)},
+      {"terrain", [](std::uint64_t s) { return terrain(5, s); }, ortho({-1, -0.5, -0.7})},
+  };
+}
+
+class Random : public ::testing::TestWithParam<std::tuple<int, int>> {};
+
+TEST_P(Random, CheckerAcceptsTheMap) {
+  const auto cases = random_cases();
+  const RandomCase& rc = cases[std::get<0>(GetParam())];
+  const std::uint64_t seed = static_cast<std::uint64_t>(std::get<1>(GetParam()));
+  vismap::Scene scene = rc.make(seed);
+  scene.file = rc.name;
+  vismap::View view = vismap::make_view(rc.camera, scene);
+  vismap_check::Options opt;
+  opt.samples = 1500;
+  opt.seed = seed;
+  expect_checked(scene, map_json(scene, view, {}), opt, rc.name + " seed " + std::to_string(seed));
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, Random,
+                         ::testing::Combine(::testing::Range(0, static_cast<int>(random_cases().size())),
+                                            ::testing::Range(1, 5)),
+                         [](const auto& info) {
+                           return random_cases()[std::get<0>(info.param)].name + "_seed" +
+                                  std::to_string(std::get<1>(info.param));
+                         });
+
+// ---- the grid is scaffolding: any c gives the same map ------------------------------
+
+TEST(GridIndependence, SameMapForEveryGridConstant) {
+  for (std::uint64_t seed : {1u, 2u}) {
+    vismap::Scene scene = vismap::gen::random_squares_depth(300, 6, seed);
+    vismap::gen::append_scene(scene, vismap::gen::interpenetrating_boxes(6, seed));
+    vismap::View view = vismap::make_view(ortho({-0.2, -0.3, -1}), scene);
+    vismap::EngineOptions opt;
+    opt.grid_c = 4;
+    const std::string reference = map_json(scene, view, opt);
+    for (double c : {0.3, 1.0, 2.5, 9.0}) {
+      opt.grid_c = c;
+      EXPECT_EQ(map_json(scene, view, opt), reference) << "grid c = " << c << ", seed " << seed;
+    }
+  }
+}
+
+}  // namespace
