@@ -20,14 +20,11 @@ Homogeneous transform(const View& view, const FT& x, const FT& y, const FT& z) {
   return {row(0), row(1), row(2), row(3)};
 }
 
-P3 to_screen(const View& view, const Homogeneous& h) {
-  if (!view.perspective) return P3{h.X, h.Y, h.Z};
-  return P3{h.X / h.W, h.Y / h.W, h.Z / h.W};
-}
+// Screen coordinates become exact leaves (GMP values, tight intervals) rather than
+// arithmetic trees: ties such as faces parallel to the screen then settle in the
+// interval filter instead of forcing exact re-evaluation at every comparison.
+FT leaf(const FT& x) { return FT(to_mpq(x)); }
 
-bool in_front(const View& view, const Homogeneous& h) {
-  return !view.perspective || (CGAL::is_positive(h.Z) && CGAL::is_positive(h.W));
-}
 
 CGAL::Bbox_2 box_of(const P3& p) {
   auto ix = CGAL::to_interval(p.x), iy = CGAL::to_interval(p.y);
@@ -78,11 +75,22 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   std::vector<Homogeneous> hv(scene.vertices.size());
   std::vector<P3> sv(scene.vertices.size());
   std::vector<char> front(scene.vertices.size(), 0);
+  // Input vertices: the exact image computed directly in GMP (a few products of
+  // doubles), kept as leaves.
+  std::array<std::array<mpq_class, 4>, 4> mq;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) mq[r][c] = view.m[r][c];
+  mpq_class px, py, pz, hq[4];
   for (auto id : used) {
     const Vec3& p = scene.vertices[id];
-    hv[id] = transform(view, FT(p.x), FT(p.y), FT(p.z));
-    front[id] = in_front(view, hv[id]);
-    if (front[id]) sv[id] = to_screen(view, hv[id]);
+    px = p.x; py = p.y; pz = p.z;
+    for (int r = 0; r < (view.perspective ? 4 : 3); ++r) hq[r] = mq[r][0] * px + mq[r][1] * py + mq[r][2] * pz + mq[r][3];
+    if (!view.perspective) hq[3] = 1;
+    hv[id] = Homogeneous{FT(hq[0]), FT(hq[1]), FT(hq[2]), FT(hq[3])};
+    front[id] = !view.perspective || (sgn(hq[2]) > 0 && sgn(hq[3]) > 0);
+    if (!front[id]) continue;
+    if (view.perspective) for (int r = 0; r < 3; ++r) hq[r] /= hq[3];
+    sv[id] = P3{FT(hq[0]), FT(hq[1]), FT(hq[2])};
   }
   auto world = [&](std::uint32_t id) {
     const Vec3& p = scene.vertices[id];
@@ -91,7 +99,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   auto clip_point = [&](std::uint32_t a, std::uint32_t b) {
     WorldPoint w = cut_at_near(world(a), world(b), hv[a].Z, hv[b].Z);
     Homogeneous h = transform(view, w.x, w.y, w.z);
-    return P3{h.X / h.W, h.Y / h.W, FT(0)};   // on the near plane: depth 0 exactly
+    return P3{leaf(h.X / h.W), leaf(h.Y / h.W), FT(0)};   // on the near plane: depth 0 exactly
   };
 
   ScreenScene ss;
@@ -131,9 +139,9 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
       if (CGAL::is_zero(nz)) continue;
       FT nx = (p1.y - p0.y) * (p2.z - p0.z) - (p1.z - p0.z) * (p2.y - p0.y);
       FT ny = (p1.z - p0.z) * (p2.x - p0.x) - (p1.x - p0.x) * (p2.z - p0.z);
-      f.a = -nx / nz;
-      f.b = -ny / nz;
-      f.c = p0.z - f.a * p0.x - f.b * p0.y;
+      f.a = leaf(-nx / nz);
+      f.b = leaf(-ny / nz);
+      f.c = leaf(p0.z - f.a * p0.x - f.b * p0.y);
       break;
     }
     f.box = box_of(f.v[0]);
