@@ -213,8 +213,10 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
       else c.kind = EdgeKind::Smooth;
     }
     c.drawn = !c.faces.empty() && (c.kind != EdgeKind::Smooth || opt.smooth);
-    c.order_face = c.faces.empty() ? ss.facets[c.sharers[0]].face : c.faces[0];
-    for (int s : c.sharers) c.order_face = std::min(c.order_face, c.faces.empty() ? ss.facets[s].face : c.order_face);
+    // Its place in the (depth, face index) order: the lowest face it belongs to.
+    c.order_face = ss.facets[c.sharers[0]].face;
+    for (int s : c.sharers) c.order_face = std::min(c.order_face, ss.facets[s].face);
+    if (!c.faces.empty()) c.order_face = c.faces[0];
     // Clip at the near plane, project.
     std::uint32_t a = wp.a, b = wp.b;
     if (!front[a] && !front[b]) { ++dropped_clipped; continue; }
