@@ -60,8 +60,8 @@ void edges(Context& c) {
   }
 }
 
-// Where the planes of pieces p and r meet inside both projections: up to two
-// midpoints of the line's stretches inside both.
+// Where the planes of pieces p and r meet inside both projections: the
+// midpoint of the first stretch of that line inside both (or nothing).
 std::vector<P2> crossing_points(const Piece& p, const Piece& r, P2& dir) {
   std::vector<P2> out;
   mpq_class A = p.pa - r.pa, B = p.pb - r.pb, C = p.pc - r.pc;   // A x + B y + C = 0
@@ -90,7 +90,7 @@ std::vector<P2> crossing_points(const Piece& p, const Piece& r, P2& dir) {
   std::sort(ts.begin(), ts.end());
   ts.erase(std::unique(ts.begin(), ts.end()), ts.end());
   mpq_class t0 = param(p0);
-  for (std::size_t k = 0; k + 1 < ts.size() && out.size() < 2; ++k) {
+  for (std::size_t k = 0; k + 1 < ts.size() && out.empty(); ++k) {
     mpq_class tm = (ts[k] + ts[k + 1]) / 2;
     mpq_class h = (tm - t0) / dd;
     P2 q{p0.x + dir.x * h, p0.y + dir.y * h};

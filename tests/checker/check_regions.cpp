@@ -26,7 +26,7 @@ enum : long { kBackground = -1, kOnRing = -2 };
 long map_region_at(const MapDoc& doc, const P2& q, long& overlap) {
   long found = kBackground;
   overlap = kBackground;
-  for (std::size_t r = 0; r < doc.regions.size(); ++r) {
+  for (std::uint32_t r : doc.region_grid.near(q)) {
     const MapRegion& reg = doc.regions[r];
     if (!reg.box.contains(q)) continue;
     Where w = locate(q, reg.outer);

@@ -18,7 +18,7 @@ std::string describe(const std::vector<std::uint32_t>& faces, Kind k) {
 
 std::vector<std::size_t> segments_at(const MapDoc& doc, const P2& q) {
   std::vector<std::size_t> out;
-  for (std::size_t i = 0; i < doc.segments.size(); ++i) {
+  for (std::uint32_t i : doc.segment_grid.near(q)) {
     const MapSegment& s = doc.segments[i];
     if (s.box.contains(q) && on_segment(q, s.from, s.to)) out.push_back(i);
   }

@@ -3,6 +3,7 @@
 #pragma once
 #include <gmpxx.h>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,9 @@ std::string str(const P2& p);   // "(x, y)" with canonical rationals
 mpq_class cross(const P2& o, const P2& a, const P2& b);
 // d1 x d2 for two direction vectors.
 mpq_class cross_dir(const P2& d1, const P2& d2);
-inline int orient(const P2& o, const P2& a, const P2& b) { return sgn(cross(o, a, b)); }
+// Sign of cross(o, a, b), by integer arithmetic on numerators and denominators
+// (no gcd: the hot predicate of the checker).
+int orient(const P2& o, const P2& a, const P2& b);
 
 // q on the closed segment [a, b] (a == b allowed: then q == a).
 bool on_segment(const P2& q, const P2& a, const P2& b);
@@ -37,6 +40,22 @@ struct Box {
 };
 Box box_of(const std::vector<P2>& pts);   // pts non-empty
 Box box_of(const P2& a, const P2& b);
+
+// Buckets of boxes on an exact uniform grid, so that a point query looks only
+// at the boxes near it. Cells are found with exact floors, never rounding.
+class BoxGrid {
+ public:
+  void build(const std::vector<Box>& boxes);
+  // Indices of the boxes that may hold q (a superset: test the box itself).
+  const std::vector<std::uint32_t>& near(const P2& q) const;
+
+ private:
+  int cell(const mpq_class& v, const mpq_class& lo, const mpq_class& size) const;
+  int n_ = 0;
+  mpq_class x0_, y0_, cw_, ch_;
+  std::vector<std::vector<std::uint32_t>> cells_;   // n_ * n_, row-major by y
+  std::vector<std::uint32_t> none_;
+};
 
 // Even-odd location of q against a closed ring: inside, outside, or on an edge.
 enum class Where { Outside, Inside, Boundary };

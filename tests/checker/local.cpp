@@ -13,7 +13,8 @@ PointLabel label_at(const Screen& sc, const P2& q) {
     mpq_class d;
   };
   std::vector<Cand> cands;
-  for (const Piece& p : sc.pieces) {
+  for (std::uint32_t pi : sc.grid.near(q)) {
+    const Piece& p = sc.pieces[pi];
     if (!p.box.contains(q)) continue;
     Where w = locate(q, p.xy);
     if (w == Where::Boundary) return out;   // on a projected edge (fan diagonals included)
@@ -50,15 +51,23 @@ LineView look_along(const Screen& sc, const P2& q, const P2& s) {
     int side = 0;   // diagonals: +1 the piece lies left of s, -1 right
   };
   std::vector<Hit> edges, diags, covers;
-  for (const Piece& p : sc.pieces) {
+  for (std::uint32_t pi : sc.grid.near(q)) {
+    const Piece& p = sc.pieces[pi];
     if (!p.box.contains(q)) continue;
     const std::size_t n = p.xy.size();
-    bool on_edge = false;
+    bool on_edge = false, inside = false;
     for (std::size_t i = 0; i < n; ++i) {
       const P2& a = p.xy[i];
       const P2& b = p.xy[(i + 1) % n];
       if (a == q) return out;   // a projected vertex
-      if (!on_segment(q, a, b)) continue;
+      if (!on_segment(q, a, b)) {
+        // Even-odd parity, as in locate(), in the same pass.
+        if ((a.y > q.y) != (b.y > q.y)) {
+          int o = orient(a, b, q);
+          if (b.y > a.y ? o > 0 : o < 0) inside = !inside;
+        }
+        continue;
+      }
       P2 e{b.x - a.x, b.y - a.y};
       if (cross_dir(e, s) != 0) return out;   // an edge crossing the line
       on_edge = true;
@@ -74,8 +83,7 @@ LineView look_along(const Screen& sc, const P2& q, const P2& s) {
         edges.push_back(std::move(h));
       }
     }
-    if (!on_edge && p.orient != 0 && locate(q, p.xy) == Where::Inside)
-      covers.push_back(Hit{&p, p.depth_at(q), p.slope_along(s)});
+    if (!on_edge && inside && p.orient != 0) covers.push_back(Hit{&p, p.depth_at(q), p.slope_along(s)});
   }
   // A non-planar face also covers q on a fan diagonal when its triangles there
   // lie on both sides (not at a fold). No plane: such covers make no intersection.

@@ -345,7 +345,14 @@ MapDoc read_map(const std::string& json_text, const vismap::Scene& scene, Failur
     fail.add(std::string("format: ") + e.what());
     return MapDoc{};
   }
-  return Reader(scene, fail).read(root);
+  MapDoc doc = Reader(scene, fail).read(root);
+  std::vector<Box> boxes;
+  for (const MapRegion& r : doc.regions) boxes.push_back(r.box);
+  doc.region_grid.build(boxes);
+  boxes.clear();
+  for (const MapSegment& s : doc.segments) boxes.push_back(s.box);
+  doc.segment_grid.build(boxes);
+  return doc;
 }
 
 }  // namespace vismap_check

@@ -36,6 +36,7 @@ struct MapDoc {
   std::array<std::array<mpq_class, 4>, 4> m;
   std::vector<MapRegion> regions;
   std::vector<MapSegment> segments;
+  BoxGrid region_grid, segment_grid;        // over the outer rings' and segments' boxes
 };
 
 // Parses and checks the format (keys, canonical numbers, ring orientation, ...).

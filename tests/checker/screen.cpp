@@ -187,7 +187,13 @@ Kind edge_kind(const std::vector<const Piece*>& owners, const mpq_class& cos_cre
 Screen make_screen(const vismap::Scene& scene, const MapDoc& doc, double crease_deg, bool smooth, Failures& fail) {
   Screen out;
   out.faces = scene.faces.size();
-  out.cos_crease = mpq_class(std::cos(crease_deg * std::numbers::pi / 180.0));
+  // The spec's c: the double cos(theta * pi / 180), then taken exactly.
+  double c = std::cos(crease_deg * std::numbers::pi / 180.0);
+  if (!std::isfinite(c)) {
+    fail.add("options: the crease angle " + std::to_string(crease_deg) + " is not finite");
+    c = 1;
+  }
+  out.cos_crease = mpq_class(c);
   out.smooth = smooth;
   Projector proj(doc, out, fail);
   for (std::size_t f = 0; f < scene.faces.size(); ++f) {
@@ -200,11 +206,15 @@ Screen make_screen(const vismap::Scene& scene, const MapDoc& doc, double crease_
         break;
       }
       const vismap::Vec3& v = scene.vertices[i];
+      if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
+        bad = true;
+        break;
+      }
       V3 p{mpq_class(v.x), mpq_class(v.y), mpq_class(v.z)};   // doubles are exact rationals
       if (w.empty() || w.back() != p) w.push_back(std::move(p));
     }
     if (bad) {
-      fail.add("scene: face " + std::to_string(f) + " has a vertex index out of range");
+      fail.add("scene: face " + std::to_string(f) + " has a vertex index out of range or a vertex not finite");
       continue;
     }
     while (w.size() > 1 && w.front() == w.back()) w.pop_back();
@@ -213,10 +223,10 @@ Screen make_screen(const vismap::Scene& scene, const MapDoc& doc, double crease_
     std::size_t j = 1, k = 0;
     V3 n{0, 0, 0};
     for (std::size_t i = 2; i < w.size() && k == 0; ++i) {
-      V3 c = cross3(sub(w[j], w[0]), sub(w[i], w[0]));
-      if (!is_zero(c)) {
+      V3 t = cross3(sub(w[j], w[0]), sub(w[i], w[0]));
+      if (!is_zero(t)) {
         k = i;
-        n = c;
+        n = t;
       }
     }
     if (k == 0) continue;   // w[1] != w[0] after dropping repeats, so this means collinear
@@ -238,6 +248,9 @@ Screen make_screen(const vismap::Scene& scene, const MapDoc& doc, double crease_
       proj.add(face, tri, roles, tn);
     }
   }
+  std::vector<Box> boxes;
+  for (const Piece& p : out.pieces) boxes.push_back(p.box);
+  out.grid.build(boxes);
   return out;
 }
 

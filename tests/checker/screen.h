@@ -43,6 +43,7 @@ struct Piece {
 
 struct Screen {
   std::vector<Piece> pieces;            // in face order
+  BoxGrid grid;                         // over the pieces' boxes
   std::size_t faces = 0;                // polygons in the scene
   mpq_class cos_crease;                 // the double cos(theta*pi/180), exactly
   bool smooth = false;                  // smooth edges are drawn

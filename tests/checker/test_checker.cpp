@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -23,6 +24,14 @@ using vismap::Vec3;
 namespace {
 
 // ---- building scenes and maps in code ---------------------------------------
+
+std::uint64_t mix(std::uint64_t& s) {
+  std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
 
 Scene scene_of(std::vector<Vec3> v, std::vector<std::vector<std::uint32_t>> f) {
   Scene s;
@@ -105,7 +114,7 @@ std::string all(const vc::Report& r) {
   do {                                                                         \
     vc::Report r_ = (rep);                                                     \
     EXPECT_FALSE(r_.ok);                                                       \
-    EXPECT_NE(all(r_).find(text), std::string::npos) << "wanted \"" << text << "\" in:\n" << all(r_); \
+    EXPECT_NE(all(r_).find(text), std::string::npos) << "wanted \"" << (text) << "\" in:\n" << all(r_); \
   } while (0)
 
 // ---- the scenes ---------------------------------------------------------------
@@ -265,6 +274,88 @@ TEST(UnionArea, OverlapsAndHoles) {
   // Lobes 1/3 and 4/3 (they cross at (8/3, 2/3)).
   EXPECT_EQ(vc::union_area(vc::make_screen(s, doc, 30, false, fail)), mpq_class(8, 3));
   EXPECT_EQ(fail.count(), 0u);
+}
+
+TEST(Geom, OrientAgreesWithCross) {
+  std::uint64_t seed = 5;
+  auto r = [&]() {
+    std::uint64_t a = mix(seed), b = mix(seed);
+    long num = long(a % 21) - 10;
+    long den = long(b % 4) + 1;   // small: many exact zeros and ties
+    return mpq_class(num, den);
+  };
+  for (int i = 0; i < 20000; ++i) {
+    vc::P2 o{r(), r()}, a{r(), r()}, b{r(), r()};
+    o.x.canonicalize();
+    o.y.canonicalize();
+    a.x.canonicalize();
+    a.y.canonicalize();
+    b.x.canonicalize();
+    b.y.canonicalize();
+    if (i % 3 == 0) b = vc::P2{o.x + (a.x - o.x) * 3, o.y + (a.y - o.y) * 3};   // collinear
+    ASSERT_EQ(vc::orient(o, a, b), sgn(vc::cross(o, a, b)));
+  }
+}
+
+// Convex polygon (ccw) clipped by the ccw triangle t: their exact intersection.
+std::vector<vc::P2> clip_convex(std::vector<vc::P2> poly, const std::vector<vc::P2>& t) {
+  for (std::size_t e = 0; e < t.size() && !poly.empty(); ++e) {
+    const vc::P2& a = t[e];
+    const vc::P2& b = t[(e + 1) % t.size()];
+    std::vector<vc::P2> out;
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      const vc::P2& p = poly[i];
+      const vc::P2& q = poly[(i + 1) % poly.size()];
+      mpq_class sp = vc::cross(a, b, p), sq = vc::cross(a, b, q);
+      if (sp >= 0) out.push_back(p);
+      if ((sp > 0 && sq < 0) || (sp < 0 && sq > 0)) {
+        mpq_class k = sp / (sp - sq);
+        out.push_back(vc::P2{p.x + k * (q.x - p.x), p.y + k * (q.y - p.y)});
+      }
+    }
+    poly = out;
+  }
+  return poly;
+}
+
+TEST(UnionArea, AgreesWithInclusionExclusion) {
+  // Up to five random triangles on a small integer grid (shared vertices,
+  // collinear and overlapping edges, containment...), union area by
+  // inclusion-exclusion over exact convex intersections.
+  std::uint64_t seed = 11;
+  vc::MapDoc doc;
+  doc.usable = true;
+  for (int i = 0; i < 4; ++i) doc.m[i][i] = 1;
+  for (int trial = 0; trial < 300; ++trial) {
+    int n = 1 + int(mix(seed) % 5);
+    Scene s;
+    std::vector<std::vector<vc::P2>> tris;
+    for (int k = 0; k < n; ++k) {
+      std::vector<vc::P2> t;
+      for (int v = 0; v < 3; ++v) {
+        double x = double(mix(seed) % 5), y = double(mix(seed) % 5);
+        s.vertices.push_back({x, y, double(k)});
+        t.push_back(vc::P2{x, y});
+      }
+      s.faces.push_back({std::uint32_t(3 * k), std::uint32_t(3 * k + 1), std::uint32_t(3 * k + 2)});
+      mpq_class a = vc::cross(t[0], t[1], t[2]);
+      if (a < 0) std::swap(t[1], t[2]);
+      if (a != 0) tris.push_back(t);
+    }
+    mpq_class want = 0;
+    for (unsigned mask = 1; mask < (1u << tris.size()); ++mask) {
+      std::vector<vc::P2> poly;
+      int bits = 0;
+      for (std::size_t k = 0; k < tris.size(); ++k)
+        if (mask & (1u << k)) {
+          poly = bits++ == 0 ? tris[k] : clip_convex(poly, tris[k]);
+        }
+      mpq_class area = poly.size() >= 3 ? mpq_class(vc::area2(poly) / 2) : mpq_class(0);
+      want += bits % 2 ? area : mpq_class(-area);
+    }
+    vc::Failures fail;
+    EXPECT_EQ(vc::union_area(vc::make_screen(s, doc, 30, false, fail)), want) << "trial " << trial;
+  }
 }
 
 TEST(Checker, SquarePasses) {
@@ -584,6 +675,48 @@ TEST(Checker, PerspectiveClipsAtTheNearPlane) {
   EXPECT_FAILS_WITH(check(s, m), "regions:");
 }
 
+TEST(Checker, PerspectiveIntersectionAndHiding) {
+  // Face 0: z = -3 over [-1,1]^2; face 1: z = x - 3 over the same x, y. They
+  // cross along x = 0; the eye sees face 1 on the right, face 0 on the left.
+  Scene s = scene_of({{-1, -1, -3}, {1, -1, -3}, {1, 1, -3}, {-1, 1, -3}, {-1, -1, -4}, {1, -1, -2}, {1, 1, -2}, {-1, 1, -4}},
+                     {{0, 1, 2, 3}, {4, 5, 6, 7}});
+  Map m;
+  m.faces = 2;
+  m.projection = "perspective";
+  m.m = perspective_matrix();
+  m.regions = {{0, {{"-1/3", "-1/3"}, {"0", "-1/3"}, {"0", "1/3"}, {"-1/3", "1/3"}}, {}},
+               {1, {{"0", "-1/3"}, {"1/2", "-1/2"}, {"1/2", "1/2"}, {"0", "1/3"}}, {}}};
+  m.segments = {{{"-1/3", "-1/3"}, {"0", "-1/3"}, "border", {0}},   {{"-1/3", "-1/3"}, {"-1/3", "1/3"}, "border", {0}},
+                {{"-1/3", "1/3"}, {"0", "1/3"}, "border", {0}},     {{"0", "-1/3"}, {"1/2", "-1/2"}, "border", {1}},
+                {{"1/2", "-1/2"}, {"1/2", "1/2"}, "border", {1}},   {{"0", "1/3"}, {"1/2", "1/2"}, "border", {1}},
+                {{"0", "-1/3"}, {"0", "1/3"}, "intersection", {0, 1}}};
+  EXPECT_PASSES(check(s, m));
+  {
+    Map bad = m;   // face 0's hidden right edge
+    bad.segments.push_back({{"1/3", "-1/3"}, {"1/3", "1/3"}, "border", {0}});
+    EXPECT_FAILS_WITH(check(s, bad), "hidden (border [0])");
+  }
+  {
+    Map bad = m;   // face 1's hidden left edge
+    bad.segments.push_back({{"-1/4", "-1/4"}, {"-1/4", "1/4"}, "border", {1}});
+    EXPECT_FAILS_WITH(check(s, bad), "hidden (border [1])");
+  }
+  {
+    Map bad = m;   // the regions swapped
+    std::swap(bad.regions[0].face, bad.regions[1].face);
+    EXPECT_FAILS_WITH(check(s, bad), "regions:");
+  }
+}
+
+TEST(Checker, NonFiniteInputIsAFailureNotACrash) {
+  Scene s = square();
+  s.vertices[2].x = std::nan("");
+  EXPECT_FAILS_WITH(check(s, square_map()), "not finite");
+  vc::Options o;
+  o.crease_deg = std::numeric_limits<double>::infinity();
+  EXPECT_FAILS_WITH(check(square(), square_map(), o), "crease angle");
+}
+
 TEST(Checker, StatsAndUnknownKeys) {
   std::string j = json(square_map());
   std::string k = j;
@@ -592,6 +725,146 @@ TEST(Checker, StatsAndUnknownKeys) {
   k = j;
   k.replace(k.find("\"stats\":{}"), 10, "\"stats\":{\"faces_dropped\":0}");
   EXPECT_TRUE(vc::check_map(square(), k, {}).ok);
+}
+
+TEST(Checker, TJunctionMatchesEdgesGeometrically) {
+  // Face 0 = [0,2]x[0,1]; faces 1, 2 = [0,1]x[1,2], [1,2]x[1,2], all in z = 0:
+  // face 0's top edge is shared with face 1 on x < 1 and with face 2 on x > 1.
+  Scene s = scene_of({{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}, {2, 2, 0}},
+                     {{0, 1, 2, 3}, {3, 4, 5, 6}, {4, 2, 7, 5}});
+  Map m;
+  m.faces = 3;
+  m.regions = {{0, {{"0", "0"}, {"2", "0"}, {"2", "1"}, {"1", "1"}, {"0", "1"}}, {}},
+               {1, {{"0", "1"}, {"1", "1"}, {"1", "2"}, {"0", "2"}}, {}},
+               {2, {{"1", "1"}, {"2", "1"}, {"2", "2"}, {"1", "2"}}, {}}};
+  m.segments = {{{"0", "0"}, {"2", "0"}, "border", {0}}, {{"2", "0"}, {"2", "1"}, "border", {0}},
+                {{"2", "1"}, {"2", "2"}, "border", {2}}, {{"1", "2"}, {"2", "2"}, "border", {2}},
+                {{"0", "2"}, {"1", "2"}, "border", {1}}, {{"0", "1"}, {"0", "2"}, "border", {1}},
+                {{"0", "0"}, {"0", "1"}, "border", {0}}};
+  EXPECT_PASSES(check(s, m));
+  vc::Options smooth;
+  smooth.smooth = true;
+  Map ms = m;
+  ms.segments.push_back({{"0", "1"}, {"1", "1"}, "smooth", {0, 1}});
+  ms.segments.push_back({{"1", "1"}, {"2", "1"}, "smooth", {0, 2}});
+  ms.segments.push_back({{"1", "1"}, {"1", "2"}, "smooth", {1, 2}});
+  EXPECT_PASSES(check(s, ms, smooth));
+  EXPECT_FAILS_WITH(check(s, m, smooth), "coverage: no segment");
+  Map merged = ms;   // the two pieces of the T written as one
+  merged.segments.erase(merged.segments.end() - 3, merged.segments.end() - 1);
+  merged.segments.push_back({{"0", "1"}, {"2", "1"}, "smooth", {0, 1}});
+  EXPECT_FAILS_WITH(check(s, merged, smooth), "smooth [0,2]");
+}
+
+TEST(Checker, PolygonSoupSharesEdgesByPosition) {
+  // The roof again, every face with its own copies of the vertices.
+  Scene s = scene_of({{0, 0, 0}, {1, 0, 1}, {1, 1, 1}, {0, 1, 0}, {1, 0, 1}, {2, 0, 0}, {2, 1, 0}, {1, 1, 1}},
+                     {{0, 1, 2, 3}, {4, 5, 6, 7}});
+  EXPECT_PASSES(check(s, roof_map()));
+}
+
+TEST(Checker, SilhouetteOverABackFace) {
+  // Face 1 folds back under face 0 from their shared edge x = 0: back-facing,
+  // hidden, and the shared edge is a silhouette.
+  Scene s = scene_of({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 1, -1}, {0.5, 0, -1}},
+                     {{0, 1, 2, 3}, {0, 3, 4, 5}});
+  Map m = square_map();
+  m.faces = 2;
+  m.segments[3] = {{"0", "0"}, {"0", "1"}, "silhouette", {0, 1}};
+  EXPECT_PASSES(check(s, m));
+  m.segments.push_back({{"1/2", "0"}, {"1/2", "1"}, "border", {1}});
+  EXPECT_FAILS_WITH(check(s, m), "hidden (border [1])");
+}
+
+TEST(Checker, CoplanarOverlapWithHole) {
+  // Same plane: the lower index wins where they overlap.
+  Scene small_first = scene_of({{1, 1, 0}, {2, 1, 0}, {2, 2, 0}, {1, 2, 0}, {0, 0, 0}, {3, 0, 0}, {3, 3, 0}, {0, 3, 0}},
+                               {{0, 1, 2, 3}, {4, 5, 6, 7}});
+  Map m;
+  m.faces = 2;
+  std::vector<Pt> inner{{"1", "1"}, {"2", "1"}, {"2", "2"}, {"1", "2"}};
+  std::vector<Pt> outer{{"0", "0"}, {"3", "0"}, {"3", "3"}, {"0", "3"}};
+  std::vector<Pt> hole(inner.rbegin(), inner.rend());
+  m.regions = {{0, inner, {}}, {1, outer, {hole}}};
+  for (int i = 0; i < 4; ++i) {
+    m.segments.push_back({inner[i], inner[(i + 1) % 4], "border", {0}});
+    m.segments.push_back({outer[i], outer[(i + 1) % 4], "border", {1}});
+  }
+  EXPECT_PASSES(check(small_first, m));
+  {
+    Map bad = m;   // hole written counter-clockwise
+    bad.regions[1].holes[0] = inner;
+    EXPECT_FAILS_WITH(check(small_first, bad), "(hole) is not clockwise");
+  }
+  {
+    Map bad = m;   // hole forgotten: the regions overlap
+    bad.regions[1].holes.clear();
+    EXPECT_FAILS_WITH(check(small_first, bad), "overlap at");
+  }
+  // Big square first: it wins everywhere and the small one's edges are hidden.
+  Scene big_first = scene_of({{0, 0, 0}, {3, 0, 0}, {3, 3, 0}, {0, 3, 0}, {1, 1, 0}, {2, 1, 0}, {2, 2, 0}, {1, 2, 0}},
+                             {{0, 1, 2, 3}, {4, 5, 6, 7}});
+  Map b;
+  b.faces = 2;
+  b.regions = {{0, outer, {}}};
+  for (int i = 0; i < 4; ++i) b.segments.push_back({outer[i], outer[(i + 1) % 4], "border", {0}});
+  EXPECT_PASSES(check(big_first, b));
+  b.segments.push_back({inner[0], inner[1], "border", {1}});
+  EXPECT_FAILS_WITH(check(big_first, b), "hidden (border [1])");
+}
+
+TEST(Checker, NonPlanarFaceHidesAlongItsDiagonal) {
+  // A non-planar quad in front; behind it a triangle whose hypotenuse lies
+  // exactly under the fan diagonal (0,0)-(2,2): hidden there too.
+  Scene s = scene_of({{0, 0, 1}, {2, 0, 1.5}, {2, 2, 1}, {0, 2, 1.5}, {0, 0, 0}, {2, 0, 0}, {2, 2, 0}},
+                     {{0, 1, 2, 3}, {4, 5, 6}});
+  Map m;
+  m.faces = 2;
+  m.regions = {{0, {{"0", "0"}, {"2", "0"}, {"2", "2"}, {"0", "2"}}, {}}};
+  m.segments = {{{"0", "0"}, {"2", "0"}, "border", {0}}, {{"2", "0"}, {"2", "2"}, "border", {0}},
+                {{"0", "2"}, {"2", "2"}, "border", {0}}, {{"0", "0"}, {"0", "2"}, "border", {0}}};
+  EXPECT_PASSES(check(s, m));
+  m.segments.push_back({{"0", "0"}, {"2", "2"}, "border", {1}});
+  EXPECT_FAILS_WITH(check(s, m), "hidden (border [1])");
+}
+
+TEST(Checker, EdgeOnFaceHidesNothingButHasEdges) {
+  // Face 1 is a wall in the plane x = 1 above the square: edge-on, it hides
+  // nothing, but its (border) edges are lines, drawn over face 0's region.
+  Scene s = scene_of({{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {1, 0, 0.5}, {1, 2, 0.5}, {1, 2, 1.5}, {1, 0, 1.5}},
+                     {{0, 1, 2, 3}, {4, 5, 6, 7}});
+  Map m;
+  m.faces = 2;
+  m.regions = {{0, {{"0", "0"}, {"1", "0"}, {"2", "0"}, {"2", "2"}, {"1", "2"}, {"0", "2"}}, {}}};
+  m.segments = {{{"0", "0"}, {"1", "0"}, "border", {0}}, {{"1", "0"}, {"2", "0"}, "border", {0}},
+                {{"2", "0"}, {"2", "2"}, "border", {0}}, {{"1", "2"}, {"2", "2"}, "border", {0}},
+                {{"0", "2"}, {"1", "2"}, "border", {0}}, {{"0", "0"}, {"0", "2"}, "border", {0}},
+                {{"1", "0"}, {"1", "2"}, "border", {1}}};
+  EXPECT_PASSES(check(s, m));
+  m.segments.pop_back();
+  EXPECT_FAILS_WITH(check(s, m), "coverage: no segment at (1, ");
+}
+
+TEST(Checker, ThreeFacesOnAnEdgeMakeACrease) {
+  // Two coplanar squares side by side, and a fin on their shared edge x = 1.
+  for (double fin_z : {-1.0, 1.0}) {
+    Scene s = scene_of({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0}, {2, 1, 0}, {1, 0, fin_z}, {1, 1, fin_z}},
+                       {{0, 1, 2, 3}, {1, 4, 5, 2}, {1, 2, 7, 6}});
+    Map m;
+    m.faces = 3;
+    m.regions = {{0, {{"0", "0"}, {"1", "0"}, {"1", "1"}, {"0", "1"}}, {}},
+                 {1, {{"1", "0"}, {"2", "0"}, {"2", "1"}, {"1", "1"}}, {}}};
+    m.segments = {{{"0", "0"}, {"1", "0"}, "border", {0}}, {{"0", "1"}, {"1", "1"}, "border", {0}},
+                  {{"0", "0"}, {"0", "1"}, "border", {0}}, {{"1", "0"}, {"2", "0"}, "border", {1}},
+                  {{"2", "0"}, {"2", "1"}, "border", {1}}, {{"1", "1"}, {"2", "1"}, "border", {1}}};
+    // Below the floor the fin's far edge is behind the shared edge: crease of
+    // all three. Above it, the fin's top edge is nearer: its border is drawn.
+    if (fin_z < 0) m.segments.push_back({{"1", "0"}, {"1", "1"}, "crease", {0, 1, 2}});
+    else m.segments.push_back({{"1", "0"}, {"1", "1"}, "border", {2}});
+    EXPECT_PASSES(check(s, m)) ;
+    m.segments.back() = {{"1", "0"}, {"1", "1"}, "smooth", {0, 1}};
+    EXPECT_FAILS_WITH(check(s, m), fin_z < 0 ? "crease [0,1,2]" : "border [2]");
+  }
 }
 
 // A heightfield seen from above: no face hides another, so the correct map is
@@ -603,13 +876,6 @@ struct Heightfield {
   Scene scene;
   Map map;
 };
-
-std::uint64_t mix(std::uint64_t& s) {
-  std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
 
 Heightfield heightfield(int n, std::uint64_t seed, bool smooth) {
   Heightfield hf;
@@ -669,7 +935,9 @@ TEST(Checker, HeightfieldPassesAndMutationsFail) {
     std::size_t creases = 0, smooths = 0;
     for (const Segment& s : hf.map.segments) (s.kind == "crease" ? creases : smooths) += s.kind != "border";
     EXPECT_GT(creases, 10u);
-    if (smooth) EXPECT_GT(smooths, 10u);
+    if (smooth) {
+      EXPECT_GT(smooths, 10u);
+    }
   }
   Heightfield hf = heightfield(6, 7, false);
   std::uint64_t seed = 99;

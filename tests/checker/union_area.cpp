@@ -35,6 +35,15 @@ mpq_class union_area(const Screen& sc) {
   }
   std::sort(edges.begin(), edges.end(), [](const Edge& l, const Edge& r) { return l.a.x < r.a.x; });
   // Proper crossings; touching and overlaps happen at vertices, already in xs.
+  // A crossing strictly inside some piece is not on the union's boundary, and
+  // the covered set does not change shape there: it needs no slab.
+  auto buried = [&](const P2& c) {
+    for (std::uint32_t pi : sc.grid.near(c)) {
+      const Piece& p = sc.pieces[pi];
+      if (p.orient != 0 && p.box.contains(c) && locate(c, p.xy) == Where::Inside) return true;
+    }
+    return false;
+  };
   for (std::size_t i = 0; i < edges.size(); ++i) {
     const Edge& e = edges[i];
     const mpq_class ey0 = std::min(e.a.y, e.b.y), ey1 = std::max(e.a.y, e.b.y);
@@ -47,7 +56,8 @@ mpq_class union_area(const Screen& sc) {
       if (o3 * o4 >= 0) continue;
       mpq_class ca = cross(f.a, e.a, f.b), cb = cross(f.a, e.b, f.b);
       mpq_class t = ca / (ca - cb);
-      xs.push_back(e.a.x + t * (e.b.x - e.a.x));
+      P2 c{e.a.x + t * (e.b.x - e.a.x), e.a.y + t * (e.b.y - e.a.y)};
+      if (!buried(c)) xs.push_back(std::move(c.x));
     }
   }
   std::sort(xs.begin(), xs.end());
@@ -67,8 +77,12 @@ mpq_class union_area(const Screen& sc) {
       active.push_back(next++);
     }
     for (std::size_t i : active) y1[i] = edges[i].y_at(x1);
-    // Insertion sort: the order changes only at crossings, so it is nearly sorted.
-    auto less = [&](std::size_t l, std::size_t r) { return y0[l] < y0[r] || (y0[l] == y0[r] && y1[l] < y1[r]); };
+    // The order just right of x0 (buried crossings may reorder edges inside a
+    // slab, but only where the union is covered anyway). Insertion sort: the
+    // order changes only at crossings, so it is nearly sorted.
+    auto less = [&](std::size_t l, std::size_t r) {
+      return y0[l] < y0[r] || (y0[l] == y0[r] && edges[l].slope < edges[r].slope);
+    };
     for (std::size_t i = 1; i < active.size(); ++i) {
       std::size_t v = active[i], j = i;
       while (j > 0 && less(v, active[j - 1])) {

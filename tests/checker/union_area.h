@@ -6,8 +6,9 @@
 
 namespace vismap_check {
 
-// Vertical slabs between consecutive critical x (vertices and edge crossings):
-// inside a slab no two edges cross, so the covered set is a union of
+// Vertical slabs between consecutive critical x (vertices, and crossings of
+// edges that are not buried inside another piece): inside a slab no two
+// boundary edges of the union cross, so the covered set is a union of
 // trapezoids whose area is exact. Each piece is filled with the even-odd rule.
 mpq_class union_area(const Screen& sc);
 
