@@ -161,21 +161,19 @@ void build_map(std::vector<MapPiece>& pieces, VisibilityMap& map) {
     if (label[e->face()->data()] == label[e->twin()->face()->data()])
       groups.join(e->face()->data(), e->twin()->face()->data());
   auto boundary = [&](Halfedge h) { return label[h->face()->data()] != label[h->twin()->face()->data()]; };
-  std::vector<char> visited(arr.number_of_halfedges(), 0);
-  // Halfedges have no index of their own: number them by iteration order.
-  std::map<const void*, std::size_t> index_of;
-  {
-    std::size_t i = 0;
-    for (auto h = arr.halfedges_begin(); h != arr.halfedges_end(); ++h) index_of[&*h] = i++;
-  }
+  // A halfedge's index: its edge's, doubled, plus its direction (twins differ).
+  auto index_of = [](Halfedge h) {
+    return 2 * static_cast<std::size_t>(h->data()) + (h->direction() == CGAL::ARR_LEFT_TO_RIGHT ? 0 : 1);
+  };
+  std::vector<char> visited(2 * attrs.size(), 0);
   std::map<int, Region> regions;   // by group
   for (auto h0 = arr.halfedges_begin(); h0 != arr.halfedges_end(); ++h0) {
     const int lab = label[h0->face()->data()];
-    if (lab < 0 || !boundary(h0) || visited[index_of[&*h0]]) continue;
+    if (lab < 0 || !boundary(h0) || visited[index_of(h0)]) continue;
     std::vector<Point2> ring;
     Halfedge h = h0;
     do {
-      visited[index_of[&*h]] = 1;
+      visited[index_of(h)] = 1;
       if (h->source()->data() >= 0) ring.push_back(points[h->source()->data()]);
       Halfedge nx = h->next();
       while (!boundary(nx)) nx = nx->twin()->next();   // step over edges inside the region

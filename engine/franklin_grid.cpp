@@ -458,7 +458,10 @@ std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss,
       const P2 m = CGAL::midpoint(pts[k], pts[k + 1]);
       Cell& cell = g.at(exact_cell_index(g.X, m.x()), exact_cell_index(g.Y, m.y()));
       covers.clear();
+      const auto mx = CGAL::to_interval(m.x()), my = CGAL::to_interval(m.y());
+      const CGAL::Bbox_2 mbox(mx.first, my.first, mx.second, my.second);
       auto consider = [&](int fi) {
+        if (!CGAL::do_overlap(mbox, ss.facets[fi].box)) return;   // cheap: cannot cover m
         Cover c;
         if (cover_at(ss.facets[fi], m, dir, c)) { c.facet = fi; covers.push_back(c); }
       };
