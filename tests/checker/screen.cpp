@@ -153,6 +153,14 @@ class Projector {
           fail_.add("internal: face " + std::to_string(face) + " is not planar on the screen");
     }
     pc.box = box_of(pc.xy);
+    // Convex: every vertex on the inner side (or the line) of every edge.
+    pc.convex = pc.orient != 0;
+    for (std::size_t i = 0, k = pc.xy.size(); i < k && pc.convex; ++i)
+      for (const P2& v : pc.xy)
+        if (orient(pc.xy[i], pc.xy[(i + 1) % k], v) == -pc.orient) {
+          pc.convex = false;
+          break;
+        }
     out_.pieces.push_back(std::move(pc));
   }
 

@@ -25,6 +25,7 @@ struct Piece {
   std::vector<mpq_class> depth;         // depth of each vertex
   std::vector<Role> role;               // role[i]: edge xy[i] -> xy[i+1 mod n]
   int orient = 0;                       // +1 front-facing, -1 back-facing, 0 edge-on
+  bool convex = false;                  // projection convex (and not edge-on)
   mpq_class pa, pb, pc;                 // depth = pa x + pb y + pc (orient != 0)
   std::array<mpq_class, 3> normal;      // world normal, right-hand rule (creases)
   Box box;

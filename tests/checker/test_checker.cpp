@@ -363,7 +363,7 @@ TEST(Checker, SquarePasses) {
   EXPECT_TRUE(r.ok) << all(r);
   EXPECT_GT(r.samples_checked, 100u);
   EXPECT_GT(r.segment_points_checked, 8u);
-  EXPECT_GT(r.edge_points_checked, 8u);
+  EXPECT_EQ(r.edge_points_checked, 4u);   // one stretch per edge
 }
 
 TEST(Checker, SquareMutations) {
@@ -509,6 +509,14 @@ TEST(Checker, SquareBehindTrianglePassesAndMutationsFail) {
     Map m = square_behind_triangle_map();   // the hypotenuse segment ends too early
     m.segments[8].to = {"9/4", "5/4"};
     EXPECT_FAILS_WITH(check(s, m), "coverage:");
+    m.segments[8].to = {"17/8", "11/8"};
+    EXPECT_FAILS_WITH(check(s, m), "coverage: no segment at (9/4, 5/4)");
+  }
+  {
+    Map m = square_behind_triangle_map();   // a visible piece split for nothing
+    m.segments[8].to = {"9/4", "5/4"};
+    m.segments.push_back({{"9/4", "5/4"}, {"5/2", "1"}, "border", {1}});
+    EXPECT_FAILS_WITH(check(s, m), "ends at (9/4, 5/4), where nothing meets");
   }
 }
 
