@@ -1,7 +1,9 @@
 // Check 6: every output segment is, at interior points, the visible line that
 // is first in the order (depth, lowest face index), with its kind and faces.
-// Also: segments meet only at their endpoints.
+// Also the topology: segments meet only at their endpoints, and no vertex is
+// superfluous (the spec's canonical form).
 #include <algorithm>
+#include <map>
 #include <numeric>
 
 #include "tests/checker/checks.h"
@@ -82,7 +84,62 @@ void check_segments(Context& c) {
   }
 }
 
+namespace {
+
+struct P2Less {
+  bool operator()(const P2& l, const P2& r) const { return l.x < r.x || (l.x == r.x && l.y < r.y); }
+};
+
+// The arrangement's edges leaving one vertex: directions, with the segment
+// drawn along each (or none for an undrawn region boundary).
+struct Star {
+  std::vector<P2> dirs;
+  std::vector<const MapSegment*> seg;
+  void add(const P2& d, const MapSegment* s) {
+    for (std::size_t i = 0; i < dirs.size(); ++i)
+      if (cross_dir(dirs[i], d) == 0 && dirs[i].x * d.x + dirs[i].y * d.y > 0) {
+        if (s) seg[i] = s;
+        return;
+      }
+    dirs.push_back(d);
+    seg.push_back(s);
+  }
+};
+
+// The spec's canonical form: a vertex where exactly two edges meet, collinear,
+// both drawn with the same kind and faces, or both undrawn, is no vertex.
+void check_superfluous(Context& c) {
+  std::map<P2, Star, P2Less> stars;
+  auto dir = [](const P2& from, const P2& to) { return P2{to.x - from.x, to.y - from.y}; };
+  for (const MapSegment& s : c.doc.segments) {
+    stars[s.from].add(dir(s.from, s.to), &s);
+    stars[s.to].add(dir(s.to, s.from), &s);
+  }
+  auto ring = [&](const std::vector<P2>& r) {
+    for (std::size_t i = 0, n = r.size(); i < n; ++i) {
+      stars[r[i]].add(dir(r[i], r[(i + 1) % n]), nullptr);
+      stars[r[i]].add(dir(r[i], r[(i + n - 1) % n]), nullptr);
+    }
+  };
+  for (const MapRegion& r : c.doc.regions) {
+    ring(r.outer);
+    for (const auto& h : r.holes) ring(h);
+  }
+  for (const auto& [v, st] : stars) {
+    if (st.dirs.size() != 2 || cross_dir(st.dirs[0], st.dirs[1]) != 0) continue;
+    const MapSegment* a = st.seg[0];
+    const MapSegment* b = st.seg[1];
+    if ((a == nullptr) != (b == nullptr)) continue;
+    if (a && (a->kind != b->kind || a->faces != b->faces)) continue;
+    c.fail.add("topology: superfluous vertex at " + str(v) + ": the map goes straight on there " +
+               (a ? "with " + describe(a->faces, a->kind) + " on both sides" : std::string("along an undrawn boundary")));
+  }
+}
+
+}  // namespace
+
 void check_topology(Context& c) {
+  check_superfluous(c);
   const auto& segs = c.doc.segments;
   std::vector<std::size_t> order(segs.size());
   std::iota(order.begin(), order.end(), 0);

@@ -26,8 +26,11 @@ struct Report {
 };
 
 // Checks that json_text is the exact visibility map of `scene` seen through the
-// view matrix written in the JSON itself (format, regions by sampling, total area,
-// every segment, and coverage of every visible edge and intersection line).
+// view matrix written in the JSON itself: the format; the regions at random
+// points and by their exact total area; every segment at interior points; that
+// every visible piece of every edge and intersection line is drawn (each cut
+// where anything over it may change, every stretch tested); and the topology.
+// Never throws; problems in the input are failures too.
 Report check_map(const vismap::Scene& scene, const std::string& json_text, const Options& opt);
 
 }  // namespace vismap_check

@@ -20,7 +20,7 @@ void check_regions(Context& c);    // 4: random samples, label against brute for
 void check_area(Context& c);       // 5: total area of the regions = area of the union
 void check_segments(Context& c);   // 6: each segment is a visible line of the right kind
 void check_coverage(Context& c);   // 7: each visible edge / intersection line is drawn
-void check_topology(Context& c);   // segments meet only at their endpoints
+void check_topology(Context& c);   // segments meet only at endpoints; no superfluous vertex
 
 std::string describe(const std::vector<std::uint32_t>& faces, Kind k);   // "crease [3,4]"
 

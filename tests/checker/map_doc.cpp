@@ -2,6 +2,7 @@
 // the per-segment rules that need no geometry of the scene.
 #include "tests/checker/map_doc.h"
 
+#include <algorithm>
 #include <charconv>
 
 #include "tests/checker/json.h"
@@ -337,6 +338,17 @@ class Reader {
 
 }  // namespace
 
+std::vector<const P2*> vertices_on(const MapDoc& doc, const P2& a, const P2& b) {
+  std::vector<const P2*> out;
+  const mpq_class& x0 = std::min(a.x, b.x);
+  const mpq_class& x1 = std::max(a.x, b.x);
+  auto it = std::lower_bound(doc.vertices.begin(), doc.vertices.end(), x0,
+                             [](const P2& p, const mpq_class& x) { return p.x < x; });
+  for (; it != doc.vertices.end() && it->x <= x1; ++it)
+    if (on_segment(*it, a, b)) out.push_back(&*it);
+  return out;
+}
+
 MapDoc read_map(const std::string& json_text, const vismap::Scene& scene, Failures& fail) {
   Json root;
   try {
@@ -352,6 +364,18 @@ MapDoc read_map(const std::string& json_text, const vismap::Scene& scene, Failur
   boxes.clear();
   for (const MapSegment& s : doc.segments) boxes.push_back(s.box);
   doc.segment_grid.build(boxes);
+  auto& v = doc.vertices;
+  for (const MapRegion& r : doc.regions) {
+    v.insert(v.end(), r.outer.begin(), r.outer.end());
+    for (const auto& h : r.holes) v.insert(v.end(), h.begin(), h.end());
+  }
+  for (const MapSegment& s : doc.segments) {
+    v.push_back(s.from);
+    v.push_back(s.to);
+  }
+  auto less = [](const P2& l, const P2& r) { return l.x < r.x || (l.x == r.x && l.y < r.y); };
+  std::sort(v.begin(), v.end(), less);
+  v.erase(std::unique(v.begin(), v.end()), v.end());
   return doc;
 }
 

@@ -37,7 +37,11 @@ struct MapDoc {
   std::vector<MapRegion> regions;
   std::vector<MapSegment> segments;
   BoxGrid region_grid, segment_grid;        // over the outer rings' and segments' boxes
+  std::vector<P2> vertices;                 // every ring vertex and segment end, by (x, y), unique
 };
+
+// The map's vertices on the closed segment [a, b].
+std::vector<const P2*> vertices_on(const MapDoc& doc, const P2& a, const P2& b);
 
 // Parses and checks the format (keys, canonical numbers, ring orientation, ...).
 // Every problem goes to `fail`; returns what could be read.

@@ -151,6 +151,11 @@ class Projector {
       for (const V3& p : sp)
         if (pc.pa * p[0] + pc.pb * p[1] + pc.pc != p[2])
           fail_.add("internal: face " + std::to_string(face) + " is not planar on the screen");
+      mpz_lcm(pc.il.get_mpz_t(), pc.pa.get_den_mpz_t(), pc.pb.get_den_mpz_t());
+      mpz_lcm(pc.il.get_mpz_t(), pc.il.get_mpz_t(), pc.pc.get_den_mpz_t());
+      pc.ia = pc.pa.get_num() * (pc.il / pc.pa.get_den());
+      pc.ib = pc.pb.get_num() * (pc.il / pc.pb.get_den());
+      pc.ic = pc.pc.get_num() * (pc.il / pc.pc.get_den());
     }
     pc.box = box_of(pc.xy);
     // Convex: every vertex on the inner side (or the line) of every edge.
@@ -171,6 +176,26 @@ class Projector {
 };
 
 }  // namespace
+
+int Piece::depth_cmp(const P2& q, const mpq_class& d) const {
+  thread_local mpz_class common, x, t;
+  const mpz_class& xn = q.x.get_num();
+  const mpz_class& xd = q.x.get_den();
+  const mpz_class& yn = q.y.get_num();
+  const mpz_class& yd = q.y.get_den();
+  // il (depth - d) xd yd dd = (ia xn yd + ib yn xd + ic xd yd) dd - il dn xd yd
+  mpz_mul(common.get_mpz_t(), xd.get_mpz_t(), yd.get_mpz_t());
+  mpz_mul(x.get_mpz_t(), ia.get_mpz_t(), xn.get_mpz_t());
+  mpz_mul(x.get_mpz_t(), x.get_mpz_t(), yd.get_mpz_t());
+  mpz_mul(t.get_mpz_t(), ib.get_mpz_t(), yn.get_mpz_t());
+  mpz_addmul(x.get_mpz_t(), t.get_mpz_t(), xd.get_mpz_t());
+  mpz_addmul(x.get_mpz_t(), ic.get_mpz_t(), common.get_mpz_t());
+  mpz_mul(x.get_mpz_t(), x.get_mpz_t(), d.get_den_mpz_t());
+  mpz_mul(t.get_mpz_t(), il.get_mpz_t(), d.get_num_mpz_t());
+  mpz_mul(t.get_mpz_t(), t.get_mpz_t(), common.get_mpz_t());
+  int c = cmp(x, t);
+  return c > 0 ? 1 : c < 0 ? -1 : 0;
+}
 
 bool is_crease(const std::array<mpq_class, 3>& n1, const std::array<mpq_class, 3>& n2, const mpq_class& c) {
   mpq_class d = dot3(n1, n2);

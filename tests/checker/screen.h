@@ -40,6 +40,10 @@ struct Piece {
     return d;
   }
   bool same_plane(const Piece& o) const { return pa == o.pa && pb == o.pb && pc == o.pc; }
+  // Sign of depth_at(q) - d by integer arithmetic (no gcd): the hot comparison.
+  int depth_cmp(const P2& q, const mpq_class& d) const;
+
+  mpz_class ia, ib, ic, il;             // il depth = ia x + ib y + ic, il > 0 (orient != 0)
 };
 
 struct Screen {
