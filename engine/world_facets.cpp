@@ -2,6 +2,8 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
+#include <gmpxx.h>
+
 #include <algorithm>
 #include <unordered_map>
 
@@ -15,8 +17,8 @@ using Q2 = KI::Point_2;
 
 Q3 q3(const Vec3& p) { return Q3(p.x, p.y, p.z); }
 
-// Index of the first vertex c such that v[0], v[b], v[c] are not collinear, with b
-// the first vertex distinct from v[0]; -1 when all are collinear.
+// Finds i1, the first vertex distinct from p[0], and i2, the first after it that is
+// not collinear with both; false when all vertices are collinear.
 bool find_plane(const std::vector<Q3>& p, std::size_t& i1, std::size_t& i2) {
   for (i1 = 1; i1 < p.size() && p[i1] == p[0]; ++i1) {}
   for (i2 = i1 + 1; i2 < p.size(); ++i2)
@@ -172,14 +174,15 @@ WorldFacets make_world_facets(const Scene& scene) {
         continue;
       }
       ++out.nonconvex;
-      // Orientation of the whole polygon decides which turn is convex.
-      KI::FT area2 = 0;
-      for (std::size_t k = 0; k < n; ++k)
-        area2 += q[k].x() * q[(k + 1) % n].y() - q[(k + 1) % n].x() * q[k].y();
-      // Sign in doubles is only a hint; ear_clip verifies every ear exactly.
-      CGAL::Orientation poly_turn = area2 > 0 ? CGAL::LEFT_TURN : CGAL::RIGHT_TURN;
+      // The polygon's orientation (exact sign of its area) decides which turn is an ear.
+      mpq_class area2 = 0;
+      for (std::size_t k = 0; k < n; ++k) {
+        const Q2 &a = q[k], &b = q[(k + 1) % n];
+        area2 += mpq_class(a.x()) * b.y() - mpq_class(b.x()) * a.y();
+      }
+      const int area_sign = sgn(area2);
       std::vector<std::array<std::size_t, 3>> tris;
-      if (ear_clip(q, poly_turn, tris) || (tris.clear(), ear_clip(q, -poly_turn, tris))) {
+      if (area_sign != 0 && ear_clip(q, area_sign > 0 ? CGAL::LEFT_TURN : CGAL::RIGHT_TURN, tris)) {
         for (auto& t : tris) out.facets.push_back(triangle_facet(face, ids, n, t[0], t[1], t[2]));
         continue;
       }
