@@ -38,6 +38,11 @@ struct Stats {
   std::vector<std::pair<std::string, std::int64_t>> counts;
   void time(const std::string& name, double s) { seconds.emplace_back(name, s); }
   void count(const std::string& name, std::int64_t n) { counts.emplace_back(name, n); }
+  std::int64_t counted(const std::string& name) const {   // 0 if never counted
+    for (const auto& [k, v] : counts)
+      if (k == name) return v;
+    return 0;
+  }
 };
 
 using Matrix4 = std::array<std::array<mpq_class, 4>, 4>;

@@ -32,6 +32,7 @@ VisibilityMap visibility_franklin(const Scene& scene, const View& view, const En
     for (int c = 0; c < 4; ++c) map.view[r][c] = mpq_class(view.m[r][c]);
   Stats& st = map.stats;
   st.count("faces_read", static_cast<std::int64_t>(scene.faces.size()));
+  const exact::FilterCounts filter_before = exact::filter_counts;
   Clock clock;
 
   // 1. Project the scene exactly; skip what cannot be seen (outside, edge-on, back faces).
@@ -72,6 +73,13 @@ VisibilityMap visibility_franklin(const Scene& scene, const View& view, const En
   st.time("arrangement", clock.lap());
   st.count("visible_segments", static_cast<std::int64_t>(map.segments.size()));
   st.count("regions", static_cast<std::int64_t>(map.regions.size()));
+  // Exact work, to compare with the output's size: points the engine constructed
+  // (intersection-line ends, crossings, piece midpoints), and the predicates the
+  // interval filter could not settle (exact arithmetic decided them).
+  st.count("constructed_points", 2 * st.counted("intersection_lines") + st.counted("intersections") +
+                                     st.counted("pieces"));
+  st.count("predicates", exact::filter_counts.calls - filter_before.calls);
+  st.count("predicates_exact", exact::filter_counts.exact - filter_before.exact);
   return map;
 }
 

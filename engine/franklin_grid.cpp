@@ -35,8 +35,55 @@ CellRange range_of(const Grid& g, const CGAL::Bbox_2& b) {
           cell_index(g.Y, b.ymax())};
 }
 
-std::array<P2, 4> corners(const Grid& g, int ix, int iy) {
-  return {P2(g.X[ix], g.Y[iy]), P2(g.X[ix + 1], g.Y[iy]), P2(g.X[ix + 1], g.Y[iy + 1]), P2(g.X[ix], g.Y[iy + 1])};
+// A cell corner: exact doubles. The corner tests are the most numerous predicates
+// of steps 5-6, so they run on the numbers' interval approximations first and
+// fall back to exact rationals only when the intervals cannot decide (counted
+// with CGAL's own filter failures).
+struct Corner {
+  double x, y;
+};
+std::array<Corner, 4> corners(const Grid& g, int ix, int iy) {
+  return {Corner{g.X[ix], g.Y[iy]}, Corner{g.X[ix + 1], g.Y[iy]}, Corner{g.X[ix + 1], g.Y[iy + 1]},
+          Corner{g.X[ix], g.Y[iy + 1]}};
+}
+
+using Interval = CGAL::Interval_nt<false>;
+
+// The sign of an expression: evaluated on intervals, else exactly.
+template <class OnIntervals, class OnRationals>
+CGAL::Sign filtered_sign(OnIntervals&& approx, OnRationals&& exact) {
+  ++exact::filter_counts.calls;
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const Interval v = approx();
+    if (v.inf() > 0) return CGAL::POSITIVE;
+    if (v.sup() < 0) return CGAL::NEGATIVE;
+  }
+  ++exact::filter_counts.exact;
+  const mpq_class v = exact();
+  return static_cast<CGAL::Sign>(sgn(v));
+}
+
+// sign(depth of f - depth of b) at corner p.
+CGAL::Sign depth_order(const Facet& f, const Facet& b, const Corner& p) {
+  return filtered_sign(
+      [&] {
+        return (f.a.approx() - b.a.approx()) * p.x + (f.b.approx() - b.b.approx()) * p.y + (f.c.approx() - b.c.approx());
+      },
+      [&]() -> mpq_class {
+        return (to_mpq(f.a) - to_mpq(b.a)) * p.x + (to_mpq(f.b) - to_mpq(b.b)) * p.y + (to_mpq(f.c) - to_mpq(b.c));
+      });
+}
+
+// Orientation of (u, v, p): positive when p is left of u -> v.
+CGAL::Sign orientation(const P3& u, const P3& v, const Corner& p) {
+  return filtered_sign(
+      [&] {
+        return (v.x.approx() - u.x.approx()) * (p.y - u.y.approx()) - (v.y.approx() - u.y.approx()) * (p.x - u.x.approx());
+      },
+      [&]() -> mpq_class {
+        return (to_mpq(v.x) - to_mpq(u.x)) * (p.y - to_mpq(u.y)) - (to_mpq(v.y) - to_mpq(u.y)) * (p.x - to_mpq(u.x));
+      });
 }
 
 bool in_cell(const Grid& g, int ix, int iy, const P2& p) {
@@ -46,11 +93,11 @@ bool in_cell(const Grid& g, int ix, int iy, const P2& p) {
 // +1 for counter-clockwise facets, -1 for clockwise: the side their interior is on.
 int turn(const Facet& f) { return f.facing == Facing::Front ? 1 : -1; }
 
-// p strictly inside the projection of the convex facet f.
-bool strictly_inside(const Facet& f, const P2& p) {
+// Corner p strictly inside the projection of the convex facet f.
+bool strictly_inside(const Facet& f, const Corner& p) {
   const std::size_t n = f.v.size();
   for (std::size_t k = 0; k < n; ++k)
-    if (CGAL::orientation(f.v[k].xy(), f.v[(k + 1) % n].xy(), p) * turn(f) <= 0) return false;
+    if (orientation(f.v[k], f.v[(k + 1) % n], p) * turn(f) <= 0) return false;
   return true;
 }
 
@@ -59,10 +106,10 @@ bool same_plane(const Facet& f, const Facet& b) { return f.a == b.a && f.b == b.
 // f is hidden by b everywhere in the closed cell (b covers it): strictly deeper at
 // the 4 corners (depths are affine, so everywhere, and in a neighbourhood), or in
 // b's very plane with a higher face index.
-bool behind_throughout(const Facet& f, const Facet& b, const std::array<P2, 4>& c) {
+bool behind_throughout(const Facet& f, const Facet& b, const std::array<Corner, 4>& c) {
   bool deeper = true;
-  for (const P2& p : c)
-    if (!(f.depth_at(p) > b.depth_at(p))) { deeper = false; break; }
+  for (const Corner& p : c)
+    if (depth_order(f, b, p) != CGAL::POSITIVE) { deeper = false; break; }
   return deeper || (b.face < f.face && same_plane(f, b));
 }
 
@@ -127,7 +174,7 @@ void bucket_facets(Grid& g, ScreenScene& ss, Stats& stats) {
         auto c = corners(g, ix, iy);
         if (cell.blocker >= 0 && behind_throughout(f, ss.facets[cell.blocker], c)) { ++skipped; continue; }
         kept = true;
-        bool covers = std::all_of(c.begin(), c.end(), [&](const P2& p) { return strictly_inside(f, p); });
+        bool covers = std::all_of(c.begin(), c.end(), [&](const Corner& p) { return strictly_inside(f, p); });
         if (!covers) { cell.facets.push_back(fi); continue; }
         ++blockers;
         if (cell.blocker < 0 || behind_throughout(ss.facets[cell.blocker], f, c)) { cell.blocker = fi; continue; }
@@ -233,8 +280,8 @@ void add_intersection_lines(Grid& g, ScreenScene& ss, Stats& stats) {
         if (!intersection_segment(A, B, p, q)) continue;
         ++found;
         Curve c;
-        c.s = P3{p.x(), p.y(), A.depth_at(p)};
-        c.t = P3{q.x(), q.y(), A.depth_at(q)};
+        c.s = P3(p, A.depth_at(p));
+        c.t = P3(q, A.depth_at(q));
         c.sharers = {fa, fb};
         c.faces = {std::min(A.face, B.face), std::max(A.face, B.face)};
         c.kind = EdgeKind::Intersection;

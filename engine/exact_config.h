@@ -1,0 +1,34 @@
+// How CGAL is configured for the engine; CMake force-includes this file ahead of
+// every translation unit of vismap_core and its users, so every unit that
+// instantiates CGAL sees the same settings.
+//
+// 1. Single-threaded: the engine runs in one thread, so CGAL's lazy numbers need no
+//    std::call_once per exact evaluation (a pthread_once and a futex system call
+//    each time: 5-8% of the run time on random squares).
+//
+// 2. How often the exact kernel's floating-point filter could not settle a question.
+// CGAL reports each filtered predicate (and each lazy comparison) through its
+// profiling macros: a call, and a "branch" when the interval answer was uncertain
+// and exact arithmetic had to decide. We define those two macros to bump plain
+// counters, so the stats can say how much exact work a scene needed.
+#pragma once
+#define VISMAP_EXACT_CONFIG_H
+#define CGAL_HAS_NO_THREADS
+#include <CGAL/Profile_counter.h>
+
+#include <cstdint>
+
+namespace vismap::exact {
+
+struct FilterCounts {
+  std::int64_t calls = 0;   // filtered predicates and comparisons run
+  std::int64_t exact = 0;   // of those, decided by exact arithmetic
+};
+inline FilterCounts filter_counts;   // the engine is single-threaded
+
+}  // namespace vismap::exact
+
+#undef CGAL_BRANCH_PROFILER
+#undef CGAL_BRANCH_PROFILER_BRANCH
+#define CGAL_BRANCH_PROFILER(Y, NAME) ++::vismap::exact::filter_counts.calls;
+#define CGAL_BRANCH_PROFILER_BRANCH(NAME) ++::vismap::exact::filter_counts.exact;
