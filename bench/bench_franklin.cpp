@@ -68,7 +68,7 @@ void register_all() {
     auto* b = benchmark::RegisterBenchmark(("squares/D:" + number(depth)).c_str(), bm_squares, depth);
     b->ArgName("N");
     for (int n : {1000, 3000, 10000, 30000, 100000}) b->Arg(n);
-    b->Unit(benchmark::kMillisecond)->UseRealTime()->Complexity(benchmark::oAuto);
+    b->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime()->Complexity(benchmark::oAuto);
   }
   // D sweep at N = 10000, as Franklin's SPHERES experiment varied D from 0.1 to 30.
   for (double depth : {0.1, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 30.0}) {
@@ -76,7 +76,8 @@ void register_all() {
         ->ArgName("N")
         ->Arg(10000)
         ->Unit(benchmark::kMillisecond)
-        ->UseRealTime();
+        ->UseRealTime()
+        ->MeasureProcessCPUTime();
   }
 }
 

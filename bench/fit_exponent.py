@@ -25,7 +25,7 @@ import sys
 TO_SECONDS = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
 
 
-def load_runs(streams, param):
+def load_runs(streams, param, clock="real_time"):
     """Returns {family: {x: [seconds, ...]}} plus counters, in input order."""
     prefix = param + ":"
     families = {}
@@ -43,7 +43,7 @@ def load_runs(streams, param):
             # Family: the name without the N part and without timing-mode suffixes.
             family = "/".join(q for q in parts if q != found[0] and q not in
                               ("real_time", "process_time", "manual_time"))
-            seconds = b["real_time"] * TO_SECONDS[b.get("time_unit", "ns")]
+            seconds = b[clock] * TO_SECONDS[b.get("time_unit", "ns")]
             families.setdefault(family, {}).setdefault(x, []).append(seconds)
             counters[(family, x)] = {k: b[k] for k in ("segments", "regions", "faces") if k in b}
     return families, counters
@@ -73,10 +73,12 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("files", nargs="*", help="benchmark JSON files (default: stdin)")
     ap.add_argument("--param", default="N", help="name part to fit against (default: N)")
+    ap.add_argument("--cpu", action="store_true",
+                    help="fit the process CPU time instead of wall time (steadier on a shared machine)")
     args = ap.parse_args()
 
     streams = [open(f, encoding="utf-8") for f in args.files] or [sys.stdin]
-    families, counters = load_runs(streams, args.param)
+    families, counters = load_runs(streams, args.param, "cpu_time" if args.cpu else "real_time")
     if not families:
         sys.exit(f"fit_exponent: no runs with a '{args.param}:<value>' part in their name")
 
