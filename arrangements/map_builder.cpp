@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 namespace vismap {
+VISMAP_KERNEL_BEGIN
 namespace {
 
 using namespace exact;
@@ -218,6 +219,19 @@ void build_map(std::vector<MapPiece>& pieces, VisibilityMap& map) {
     if (b.from < a.from) return false;
     return a.to < b.to;
   });
+}
+
+VISMAP_KERNEL_END
+
+void build_map_from_floats(std::vector<FloatPiece>& pieces, VisibilityMap& map) {
+  std::vector<MapPiece> mp;
+  mp.reserve(pieces.size());
+  for (const FloatPiece& f : pieces) {
+    if (f.ax == f.bx && f.ay == f.by) continue;
+    mp.push_back(MapPiece{exact::P2(f.ax, f.ay), exact::P2(f.bx, f.by), f.za, f.zb, f.left, f.right, f.drawn, f.kind,
+                          f.faces, f.order_face});
+  }
+  build_map(mp, map);
 }
 
 }  // namespace vismap

@@ -7,6 +7,7 @@
 #include "engine/exact_kernel.h"
 
 namespace vismap {
+VISMAP_KERNEL_BEGIN
 
 struct MapPiece {
   exact::P2 a, b;                    // a != b
@@ -23,5 +24,20 @@ struct MapPiece {
 // and segments in canonical order into `map`. Throws std::logic_error if the
 // labels are inconsistent (a bug, never bad input).
 void build_map(std::vector<MapPiece>& pieces, VisibilityMap& map);
+
+VISMAP_KERNEL_END
+
+// A piece computed in doubles by the float variant of the engine (benchmarks
+// only), handed to the exact arrangement builder. Pieces whose ends coincide
+// are dropped.
+struct FloatPiece {
+  double ax, ay, bx, by, za, zb;
+  int left = -1, right = -1;
+  bool drawn = false;
+  EdgeKind kind = EdgeKind::Border;
+  const std::vector<int>* faces = nullptr;
+  int order_face = 0;
+};
+void build_map_from_floats(std::vector<FloatPiece>& pieces, VisibilityMap& map);   // in the exact build
 
 }  // namespace vismap

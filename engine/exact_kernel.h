@@ -1,26 +1,57 @@
-// The one place that names the exact kernel. Only the CGAL translation units of
-// the engine include this; public headers stay free of CGAL.
+// The one place that names the kernel. Only the CGAL translation units of the
+// engine include this; public headers stay free of CGAL.
+//
+// The kernel-dependent units (screen_scene, franklin_grid, franklin, map_builder)
+// are compiled twice: normally with CGAL's Epeck (filtered predicates, lazy exact
+// constructions), and with VISMAP_FLOAT_KERNEL defined on plain doubles
+// (CGAL::Simple_cartesian<double>) for the benchmarks' float variant: the same code
+// path on an inexact kernel, to show what exactness costs and what it buys. The two
+// builds live in different inline namespaces, so both link into one program.
 #pragma once
 #ifndef VISMAP_EXACT_CONFIG_H
 #error "engine/exact_config.h must come first (CMake force-includes it for vismap_core)"
 #endif
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Interval_nt.h>
 #include <gmpxx.h>
+#ifdef VISMAP_FLOAT_KERNEL
+#include <CGAL/Simple_cartesian.h>
+#define VISMAP_KERNEL_NS float_kernel
+#else
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#define VISMAP_KERNEL_NS exact_kernel
+#endif
+// Opens / closes the kernel's inline namespace around kernel-dependent code.
+#define VISMAP_KERNEL_BEGIN inline namespace VISMAP_KERNEL_NS {
+#define VISMAP_KERNEL_END }
 
 namespace vismap::exact {
+VISMAP_KERNEL_BEGIN
 
+#ifdef VISMAP_FLOAT_KERNEL
+using K = CGAL::Simple_cartesian<double>;   // no filter, no exactness: the float variant
+#else
 using K = CGAL::Epeck;          // filtered predicates, lazy exact constructions
+#endif
 using FT = K::FT;
 using P2 = K::Point_2;
 using V2 = K::Vector_2;
 using Seg2 = K::Segment_2;
 
-// The exact value of a kernel number as a GMP rational (forces exact evaluation).
-// (CGAL picks mpq_class or Boost's gmp_rational depending on what is included.)
+// The exact value of a kernel number as a GMP rational (forces exact evaluation),
+// a rational as a kernel number, and a number's interval approximation.
 inline mpq_class to_mpq(const mpq_class& q) { return q; }
+#ifdef VISMAP_FLOAT_KERNEL
+inline mpq_class to_mpq(double x) { return mpq_class(x); }
+inline FT from_mpq(const mpq_class& q) { return q.get_d(); }
+inline CGAL::Interval_nt<false> approx_of(const FT& x) { return CGAL::Interval_nt<false>(x); }
+#else
+// (CGAL picks mpq_class or Boost's gmp_rational depending on what is included.)
 template <class Boost_rational>
 mpq_class to_mpq(const Boost_rational& q) { return mpq_class(q.backend().data()); }
 inline mpq_class to_mpq(const FT& x) { return to_mpq(CGAL::exact(x)); }
+inline FT from_mpq(const mpq_class& q) { return FT(q); }
+inline CGAL::Interval_nt<false> approx_of(const FT& x) { return x.approx(); }
+#endif
 
 // Screen-space point with its depth: (x, y) on the screen, z = depth (smaller = nearer).
 // The point (x, y) is built once: each lazy point made costs an allocation.
@@ -33,4 +64,5 @@ struct P3 {
   const P2& xy() const { return p; }
 };
 
+VISMAP_KERNEL_END
 }  // namespace vismap::exact

@@ -22,7 +22,12 @@ struct Clock {
 };
 }  // namespace
 
-VisibilityMap visibility_franklin(const Scene& scene, const View& view, const EngineOptions& opt) {
+#ifdef VISMAP_FLOAT_KERNEL
+#define VISMAP_FRANKLIN_ENTRY visibility_franklin_float
+#else
+#define VISMAP_FRANKLIN_ENTRY visibility_franklin
+#endif
+VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const EngineOptions& opt) {
   using namespace engine;
   VisibilityMap map;
   map.scene_file = scene.file;
@@ -62,6 +67,19 @@ VisibilityMap visibility_franklin(const Scene& scene, const View& view, const En
   st.time("visibility", clock.lap());
 
   // 10. The planar arrangement of the visible pieces, its regions labelled.
+#ifdef VISMAP_FLOAT_KERNEL
+  // The float variant's pieces go to the exact arrangement: CGAL's sweep on
+  // contradictory doubles crashes (seen on 10^3 random squares), and a crash
+  // tells less than a map the exact builder can check.
+  std::vector<FloatPiece> mp;
+  mp.reserve(pieces.size());
+  for (const VisiblePiece& p : pieces) {
+    const Curve& c = ss.curves[p.curve];
+    mp.push_back(FloatPiece{p.a.x(), p.a.y(), p.b.x(), p.b.y(), depth_on(c, p.a), depth_on(c, p.b), p.left,
+                            p.right, p.visible, c.kind, &c.faces, c.order_face});
+  }
+  build_map_from_floats(mp, map);
+#else
   std::vector<MapPiece> mp;
   mp.reserve(pieces.size());
   for (const VisiblePiece& p : pieces) {
@@ -70,6 +88,7 @@ VisibilityMap visibility_franklin(const Scene& scene, const View& view, const En
                           &c.faces, c.order_face});
   }
   build_map(mp, map);
+#endif
   st.time("arrangement", clock.lap());
   st.count("visible_segments", static_cast<std::int64_t>(map.segments.size()));
   st.count("regions", static_cast<std::int64_t>(map.regions.size()));

@@ -7,6 +7,7 @@
 #include <unordered_set>
 
 namespace vismap::engine {
+VISMAP_KERNEL_BEGIN
 namespace {
 
 using Rect = K::Iso_rectangle_2;
@@ -68,7 +69,8 @@ CGAL::Sign filtered_sign(OnIntervals&& approx, OnRationals&& exact) {
 CGAL::Sign depth_order(const Facet& f, const Facet& b, const Corner& p) {
   return filtered_sign(
       [&] {
-        return (f.a.approx() - b.a.approx()) * p.x + (f.b.approx() - b.b.approx()) * p.y + (f.c.approx() - b.c.approx());
+        return (approx_of(f.a) - approx_of(b.a)) * p.x + (approx_of(f.b) - approx_of(b.b)) * p.y +
+               (approx_of(f.c) - approx_of(b.c));
       },
       [&]() -> mpq_class {
         return (to_mpq(f.a) - to_mpq(b.a)) * p.x + (to_mpq(f.b) - to_mpq(b.b)) * p.y + (to_mpq(f.c) - to_mpq(b.c));
@@ -79,7 +81,8 @@ CGAL::Sign depth_order(const Facet& f, const Facet& b, const Corner& p) {
 CGAL::Sign orientation(const P3& u, const P3& v, const Corner& p) {
   return filtered_sign(
       [&] {
-        return (v.x.approx() - u.x.approx()) * (p.y - u.y.approx()) - (v.y.approx() - u.y.approx()) * (p.x - u.x.approx());
+        return (approx_of(v.x) - approx_of(u.x)) * (p.y - approx_of(u.y)) -
+               (approx_of(v.y) - approx_of(u.y)) * (p.x - approx_of(u.x));
       },
       [&]() -> mpq_class {
         return (to_mpq(v.x) - to_mpq(u.x)) * (p.y - to_mpq(u.y)) - (to_mpq(v.y) - to_mpq(u.y)) * (p.x - to_mpq(u.x));
@@ -560,4 +563,5 @@ std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss,
   return out;
 }
 
+VISMAP_KERNEL_END
 }  // namespace vismap::engine

@@ -5,6 +5,7 @@
 #include "engine/screen_scene.h"
 
 namespace vismap::engine {
+VISMAP_KERNEL_BEGIN
 
 struct Cell {
   int blocker = -1;             // step 3a: closest facet covering the whole cell
@@ -37,4 +38,5 @@ std::vector<std::vector<P2>> cut_curves(Grid& g, const ScreenScene& ss, Stats& s
 std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss,
                                           std::vector<std::vector<P2>>& cuts, Stats& stats);  // steps 9, 11
 
+VISMAP_KERNEL_END
 }  // namespace vismap::engine

@@ -7,6 +7,7 @@
 #include "engine/edge_pieces.h"
 
 namespace vismap::engine {
+VISMAP_KERNEL_BEGIN
 namespace {
 
 struct Homogeneous {
@@ -23,7 +24,7 @@ Homogeneous transform(const View& view, const FT& x, const FT& y, const FT& z) {
 // Screen coordinates become exact leaves (GMP values, tight intervals) rather than
 // arithmetic trees: ties such as faces parallel to the screen then settle in the
 // interval filter instead of forcing exact re-evaluation at every comparison.
-FT leaf(const FT& x) { return FT(to_mpq(x)); }
+FT leaf(const FT& x) { return from_mpq(to_mpq(x)); }
 
 
 CGAL::Bbox_2 box_of(const P3& p) {
@@ -86,11 +87,11 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     px = p.x; py = p.y; pz = p.z;
     for (int r = 0; r < (view.perspective ? 4 : 3); ++r) hq[r] = mq[r][0] * px + mq[r][1] * py + mq[r][2] * pz + mq[r][3];
     if (!view.perspective) hq[3] = 1;
-    hv[id] = Homogeneous{FT(hq[0]), FT(hq[1]), FT(hq[2]), FT(hq[3])};
+    hv[id] = Homogeneous{from_mpq(hq[0]), from_mpq(hq[1]), from_mpq(hq[2]), from_mpq(hq[3])};
     front[id] = !view.perspective || (sgn(hq[2]) > 0 && sgn(hq[3]) > 0);
     if (!front[id]) continue;
     if (view.perspective) for (int r = 0; r < 3; ++r) hq[r] /= hq[3];
-    sv[id] = P3{FT(hq[0]), FT(hq[1]), FT(hq[2])};
+    sv[id] = P3{from_mpq(hq[0]), from_mpq(hq[1]), from_mpq(hq[2])};
   }
   auto world = [&](std::uint32_t id) {
     const Vec3& p = scene.vertices[id];
@@ -247,4 +248,5 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   return ss;
 }
 
+VISMAP_KERNEL_END
 }  // namespace vismap::engine

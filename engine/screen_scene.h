@@ -13,6 +13,7 @@
 
 namespace vismap::engine {
 using namespace vismap::exact;
+VISMAP_KERNEL_BEGIN
 
 enum class Facing : std::uint8_t { Front, Back, EdgeOn };
 
@@ -50,4 +51,5 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
 // Depth along a curve at a screen point p on it (depth is affine along a screen line).
 FT depth_on(const Curve& c, const P2& p);
 
+VISMAP_KERNEL_END
 }  // namespace vismap::engine

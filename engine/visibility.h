@@ -16,4 +16,10 @@ struct EngineOptions {
 VisibilityMap visibility_franklin(const Scene& scene, const View& view,
                                   const EngineOptions& options);
 
+// The same code on plain doubles (CGAL::Simple_cartesian<double>), for the
+// benchmarks only: it shows what exactness costs and buys, and may give a wrong
+// map or throw std::logic_error where the doubles contradict each other.
+VisibilityMap visibility_franklin_float(const Scene& scene, const View& view,
+                                        const EngineOptions& options);
+
 }  // namespace vismap
