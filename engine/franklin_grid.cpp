@@ -22,9 +22,16 @@ int cell_index(const std::vector<double>& bounds, double v) {
 // (the last cell is closed): guessed in doubles, confirmed exactly.
 int exact_cell_index(const std::vector<double>& bounds, const FT& v) {
   const int last = static_cast<int>(bounds.size()) - 2;
+  const auto iv = CGAL::to_interval(v);
+  // v < b, on the interval first (no lazy number built for b).
+  auto less = [&](double b) {
+    if (iv.second < b) return true;
+    if (iv.first >= b) return false;
+    return v < FT(b);
+  };
   int i = cell_index(bounds, CGAL::to_double(v));
-  while (i > 0 && v < FT(bounds[i])) --i;
-  while (i < last && !(v < FT(bounds[i + 1]))) ++i;
+  while (i > 0 && less(bounds[i])) --i;
+  while (i < last && !less(bounds[i + 1])) ++i;
   return i;
 }
 
@@ -436,25 +443,55 @@ std::vector<std::vector<P2>> cut_curves(Grid& g, const ScreenScene& ss, Stats& s
 
 namespace {
 
+// The point m where a piece is decided, and its curve's direction, as exact
+// numbers and as intervals: the comparisons below run on the intervals and fall
+// back to rationals only when those cannot decide (no lazy trees are built).
+struct Probe {
+  FT x, y;                    // m
+  Interval ix, iy;
+  const P3 *s, *t;            // the curve's end points: direction t - s
+  Interval idx, idy;
+  mpq_class ex, ey, edx, edy; // exact values, filled on first need
+  bool have_exact = false;
+  void need_exact() {
+    if (have_exact) return;
+    ex = to_mpq(x);
+    ey = to_mpq(y);
+    edx = to_mpq(t->x) - to_mpq(s->x);
+    edy = to_mpq(t->y) - to_mpq(s->y);
+    have_exact = true;
+  }
+};
+
 // What one facet contributes at a point m of a curve: whether it covers the
-// points just left / right of m, and its depth there.
+// points just left / right of m.
 struct Cover {
   int facet;
   bool left, right;
-  FT depth, slope;   // depth at m; its rate along the left normal
 };
 
-bool cover_at(const Facet& f, const P2& m, const V2& dir, Cover& out) {
+// sign((q - p) . (t - s)): a facet edge's direction against the curve's.
+CGAL::Sign edge_along(const P3& p, const P3& q, Probe& m) {
+  return filtered_sign(
+      [&] { return (approx_of(q.x) - approx_of(p.x)) * m.idx + (approx_of(q.y) - approx_of(p.y)) * m.idy; },
+      [&]() -> mpq_class {
+        m.need_exact();
+        return (to_mpq(q.x) - to_mpq(p.x)) * m.edx + (to_mpq(q.y) - to_mpq(p.y)) * m.edy;
+      });
+}
+
+bool cover_at(const Facet& f, const P2& m, Probe& probe, Cover& out) {
   const std::size_t n = f.v.size();
   bool left = true, right = true;
   for (std::size_t k = 0; k < n && (left || right); ++k) {
-    const P2 p = f.v[k].xy(), q = f.v[(k + 1) % n].xy();
-    int o = CGAL::orientation(p, q, m) * turn(f);
+    const P3& p = f.v[k];
+    const P3& q = f.v[(k + 1) % n];
+    int o = CGAL::orientation(p.xy(), q.xy(), m) * turn(f);
     if (o > 0) continue;
     if (o < 0) return false;
     // m on this edge's line: the facet lies on one side of it. Which side of the
     // curve that is follows from the edge's direction relative to the curve's.
-    int s = CGAL::sign((q - p) * dir) * turn(f);
+    int s = edge_along(p, q, probe) * turn(f);
     if (s <= 0) left = false;
     if (s >= 0) right = false;
   }
@@ -462,18 +499,48 @@ bool cover_at(const Facet& f, const P2& m, const V2& dir, Cover& out) {
   out.facet = -1;
   out.left = left;
   out.right = right;
-  out.depth = f.depth_at(m);
-  out.slope = f.b * dir.x() - f.a * dir.y();   // gradient . (-dy, dx)
   return true;
 }
 
+// sign(depth of f - depth of g) at m.
+CGAL::Sign depth_order(const Facet& f, const Facet& g, Probe& m) {
+  return filtered_sign(
+      [&] { return (approx_of(f.a) - approx_of(g.a)) * m.ix + (approx_of(f.b) - approx_of(g.b)) * m.iy +
+                   (approx_of(f.c) - approx_of(g.c)); },
+      [&]() -> mpq_class {
+        m.need_exact();
+        return (to_mpq(f.a) - to_mpq(g.a)) * m.ex + (to_mpq(f.b) - to_mpq(g.b)) * m.ey + (to_mpq(f.c) - to_mpq(g.c));
+      });
+}
+
+// sign(slope of f - slope of g), the slope being the rate at which depth grows
+// along the curve's left normal (-dy, dx).
+CGAL::Sign slope_order(const Facet& f, const Facet& g, Probe& m) {
+  return filtered_sign(
+      [&] { return (approx_of(f.b) - approx_of(g.b)) * m.idx - (approx_of(f.a) - approx_of(g.a)) * m.idy; },
+      [&]() -> mpq_class {
+        m.need_exact();
+        return (to_mpq(f.b) - to_mpq(g.b)) * m.edx - (to_mpq(f.a) - to_mpq(g.a)) * m.edy;
+      });
+}
+
+// sign(depth of f at m - z).
+CGAL::Sign depth_against(const Facet& f, Probe& m, const FT& z) {
+  return filtered_sign(
+      [&] { return approx_of(f.a) * m.ix + approx_of(f.b) * m.iy + approx_of(f.c) - approx_of(z); },
+      [&]() -> mpq_class {
+        m.need_exact();
+        return to_mpq(f.a) * m.ex + to_mpq(f.b) * m.ey + to_mpq(f.c) - to_mpq(z);
+      });
+}
+
 // Order just beside m on one side: depth, then how fast depth grows that way, then index.
-bool before(const Cover& x, int fx, const Cover& y, int fy, bool left_side) {
-  auto c = CGAL::compare(x.depth, y.depth);
-  if (c != CGAL::EQUAL) return c == CGAL::SMALLER;
-  c = left_side ? CGAL::compare(x.slope, y.slope) : CGAL::compare(y.slope, x.slope);
-  if (c != CGAL::EQUAL) return c == CGAL::SMALLER;
-  return fx < fy;
+bool before(const Facet& x, const Facet& y, Probe& m, bool left_side) {
+  CGAL::Sign c = depth_order(x, y, m);
+  if (c != CGAL::ZERO) return c == CGAL::NEGATIVE;
+  c = left_side ? slope_order(x, y, m) : slope_order(y, x, m);
+  if (c != CGAL::ZERO) return c == CGAL::NEGATIVE;
+  return x.face < y.face;
 }
 
 }  // namespace
@@ -493,36 +560,45 @@ std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss,
     // 9a: sort along the curve (the order of the dominant coordinate).
     const bool use_x = CGAL::compare(CGAL::abs(t.x() - s.x()), CGAL::abs(t.y() - s.y())) != CGAL::SMALLER;
     const bool increasing = use_x ? s.x() < t.x() : s.y() < t.y();
-    auto key_less = [&](const P2& a, const P2& b) {
-      bool lt = use_x ? a.x() < b.x() : a.y() < b.y();
-      bool gt = use_x ? a.x() > b.x() : a.y() > b.y();
-      return increasing ? lt : gt;
+    auto key_less = [&](const P2& a, const P2& b) {   // predicates: no coordinates built
+      return (use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b)) == (increasing ? CGAL::SMALLER : CGAL::LARGER);
     };
     std::sort(pts.begin(), pts.end(), key_less);
     pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
     pts.insert(pts.begin(), s);
     pts.push_back(t);
-    const V2 dir = t - s;
+    Probe probe;
+    probe.s = &cv.s;
+    probe.t = &cv.t;
+    {
+      CGAL::Protect_FPU_rounding<true> upward;
+      probe.idx = approx_of(cv.t.x) - approx_of(cv.s.x);
+      probe.idy = approx_of(cv.t.y) - approx_of(cv.s.y);
+    }
     for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
       ++pieces;
       const P2 m = CGAL::midpoint(pts[k], pts[k + 1]);
-      Cell& cell = g.at(exact_cell_index(g.X, m.x()), exact_cell_index(g.Y, m.y()));
+      probe.x = m.x();
+      probe.y = m.y();
+      probe.ix = approx_of(probe.x);
+      probe.iy = approx_of(probe.y);
+      probe.have_exact = false;
+      Cell& cell = g.at(exact_cell_index(g.X, probe.x), exact_cell_index(g.Y, probe.y));
       covers.clear();
-      const auto mx = CGAL::to_interval(m.x()), my = CGAL::to_interval(m.y());
-      const CGAL::Bbox_2 mbox(mx.first, my.first, mx.second, my.second);
+      const CGAL::Bbox_2 mbox(probe.ix.inf(), probe.iy.inf(), probe.ix.sup(), probe.iy.sup());
       auto consider = [&](int fi) {
         if (!CGAL::do_overlap(mbox, ss.facets[fi].box)) return;   // cheap: cannot cover m
         Cover c;
-        if (cover_at(ss.facets[fi], m, dir, c)) { c.facet = fi; covers.push_back(c); }
+        if (cover_at(ss.facets[fi], m, probe, c)) { c.facet = fi; covers.push_back(c); }
       };
       for (int fi : cell.facets) consider(fi);
       if (cell.blocker >= 0) consider(cell.blocker);
       // Nearest face on each side (step 11).
       int bl = -1, br = -1;
       for (std::size_t i = 0; i < covers.size(); ++i) {
-        const int fi = ss.facets[covers[i].facet].face;
-        if (covers[i].left && (bl < 0 || before(covers[i], fi, covers[bl], ss.facets[covers[bl].facet].face, true))) bl = static_cast<int>(i);
-        if (covers[i].right && (br < 0 || before(covers[i], fi, covers[br], ss.facets[covers[br].facet].face, false))) br = static_cast<int>(i);
+        const Facet& f = ss.facets[covers[i].facet];
+        if (covers[i].left && (bl < 0 || before(f, ss.facets[covers[bl].facet], probe, true))) bl = static_cast<int>(i);
+        if (covers[i].right && (br < 0 || before(f, ss.facets[covers[br].facet], probe, false))) br = static_cast<int>(i);
       }
       VisiblePiece vp;
       vp.a = pts[k];
@@ -541,12 +617,14 @@ std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss,
       // comes before it in (depth, face index).
       if (cv.drawn) {
         vp.visible = true;
-        const FT zm = depth_on(cv, m);
+        FT zm;
+        bool have_zm = false;
         for (std::size_t i = 0; i < covers.size() && vp.visible; ++i) {
           const int face = ss.facets[covers[i].facet].face;
           if (std::binary_search(cv.faces.begin(), cv.faces.end(), face)) continue;
-          auto c = CGAL::compare(covers[i].depth, zm);
-          if (!(c == CGAL::SMALLER || (c == CGAL::EQUAL && face < cv.order_face))) continue;
+          if (!have_zm) { zm = depth_on(cv, m); have_zm = true; }
+          auto c = depth_against(ss.facets[covers[i].facet], probe, zm);
+          if (!(c == CGAL::NEGATIVE || (c == CGAL::ZERO && face < cv.order_face))) continue;
           bool both = covers[i].left && covers[i].right;
           for (std::size_t j = 0; j < covers.size() && !both; ++j)   // two facets of one polygon
             if (j != i && ss.facets[covers[j].facet].face == face)
