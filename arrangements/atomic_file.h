@@ -1,11 +1,47 @@
-// Output files are written whole or not at all: to a temporary name in the same
-// folder, renamed over the target only when complete. "-" means standard output.
+// Output files are written whole or not at all: each to a temporary name in
+// its own folder (".NAME.tmp-XXXXXX"), flushed to disk, and renamed over the
+// target only when every output of the run is complete. A failure, or SIGINT,
+// SIGTERM, SIGHUP or SIGQUIT during the run, leaves the old files as they were
+// and no temporary behind. "-" means standard output.
 #pragma once
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace vismap {
 
-// Throws std::runtime_error naming the file when it cannot be written.
+// Makes SIGINT, SIGTERM, SIGHUP and SIGQUIT remove the temporaries in flight
+// before the process dies of the signal as it would have. Call once, early.
+void install_output_cleanup_handlers();
+
+// Writes every (path, contents): all temporaries first, then all renames, so
+// that one that cannot be written leaves every target untouched. Throws
+// std::runtime_error naming the file when one cannot be written.
+void write_files_atomically(const std::vector<std::pair<std::string, std::string>>& files);
+
+// One file.
 void write_file_atomically(const std::string& path, const std::string& contents);
+
+// A temporary being written, for tests and callers that stream: created next
+// to `path`, removed on destruction unless commit() renamed it over `path`.
+class AtomicFile {
+ public:
+  explicit AtomicFile(const std::string& path);   // throws std::runtime_error
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+  ~AtomicFile();
+
+  void write(const std::string& bytes);           // throws std::runtime_error
+  void finish();                                  // flush to disk and close; throws
+  void commit();                                  // finish() if needed, then rename; throws
+  const std::string& temp_path() const { return tmp_; }
+
+ private:
+  void discard() noexcept;
+  std::string path_, tmp_;
+  int fd_ = -1;
+  int slot_ = -1;
+  bool committed_ = false;
+};
 
 }  // namespace vismap

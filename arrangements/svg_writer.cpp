@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 namespace vismap {
 namespace {
@@ -28,40 +30,60 @@ double shade(const Scene& scene, const View& view, int face) {
   return 0.3 + 0.65 * c;
 }
 
+// The page: the map's extent scaled to opt.size, with a margin; y up on the screen.
+struct Frame {
+  double x0 = 0, y0 = 0, k = 1, margin = 0, w = 0, h = 0;
+  explicit Frame(const VisibilityMap& map, const SvgOptions& opt) {
+    double xa = HUGE_VAL, ya = HUGE_VAL, xb = -HUGE_VAL, yb = -HUGE_VAL;
+    auto grow = [&](const Point2& p) {
+      double x = p.x.get_d(), y = p.y.get_d();
+      xa = std::min(xa, x); xb = std::max(xb, x);
+      ya = std::min(ya, y); yb = std::max(yb, y);
+    };
+    for (const auto& r : map.regions) for (const auto& p : r.outer) grow(p);
+    for (const auto& s : map.segments) { grow(s.from); grow(s.to); }
+    if (xa > xb) { xa = ya = 0; xb = yb = 1; }
+    const double extent = std::max({xb - xa, yb - ya, 1e-300});
+    x0 = xa;
+    y0 = ya;
+    margin = 0.03 * opt.size;
+    k = (opt.size - 2 * margin) / extent;
+    w = (xb - xa) * k + 2 * margin;
+    h = (yb - ya) * k + 2 * margin;
+  }
+  std::string xy(const Point2& p) const {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.3f %.3f", margin + (p.x.get_d() - x0) * k, h - margin - (p.y.get_d() - y0) * k);
+    return buf;
+  }
+  std::string header() const {
+    char buf[160];
+    std::snprintf(buf, sizeof buf,
+                  "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.3f %.3f\">\n",
+                  std::ceil(w), std::ceil(h), w, h);
+    return std::string(buf) + "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  }
+};
+
+// The fill of a face's regions (and of its painter's fragments).
+std::string fill_of(const Scene& scene, const View& view, int face) {
+  int g = static_cast<int>(std::lround(255 * shade(scene, view, face)));
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "rgb(%d,%d,%d)", g, g, std::min(255, g + 12));
+  return buf;
+}
+
 }  // namespace
 
 std::string to_svg(const VisibilityMap& map, const Scene& scene, const View& view, const SvgOptions& opt) {
-  double x0 = HUGE_VAL, y0 = HUGE_VAL, x1 = -HUGE_VAL, y1 = -HUGE_VAL;
-  auto grow = [&](const Point2& p) {
-    double x = p.x.get_d(), y = p.y.get_d();
-    x0 = std::min(x0, x); x1 = std::max(x1, x);
-    y0 = std::min(y0, y); y1 = std::max(y1, y);
-  };
-  for (const auto& r : map.regions) for (const auto& p : r.outer) grow(p);
-  for (const auto& s : map.segments) { grow(s.from); grow(s.to); }
-  if (x0 > x1) { x0 = y0 = 0; x1 = y1 = 1; }
-  const double extent = std::max({x1 - x0, y1 - y0, 1e-300});
-  const double margin = 0.03 * opt.size, k = (opt.size - 2 * margin) / extent;
-  const double w = (x1 - x0) * k + 2 * margin, h = (y1 - y0) * k + 2 * margin;
-  char buf[128];
-  auto xy = [&](const Point2& p) {
-    std::snprintf(buf, sizeof buf, "%.3f %.3f", margin + (p.x.get_d() - x0) * k, h - margin - (p.y.get_d() - y0) * k);
-    return std::string(buf);
-  };
-  std::string out;
-  std::snprintf(buf, sizeof buf,
-                "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.3f %.3f\">\n",
-                std::ceil(w), std::ceil(h), w, h);
-  out += buf;
-  out += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  const Frame frame(map, opt);
+  std::string out = frame.header();
   if (!opt.lines_only) {
     out += "<g stroke=\"none\" fill-rule=\"evenodd\">\n";
     for (const auto& r : map.regions) {
-      int g = static_cast<int>(std::lround(255 * shade(scene, view, r.face)));
-      std::snprintf(buf, sizeof buf, "<path fill=\"rgb(%d,%d,%d)\" d=\"", g, g, std::min(255, g + 12));
-      out += buf;
+      out += "<path fill=\"" + fill_of(scene, view, r.face) + "\" d=\"";
       auto ring = [&](const std::vector<Point2>& pts) {
-        for (std::size_t i = 0; i < pts.size(); ++i) out += (i ? " L" : "M") + xy(pts[i]);
+        for (std::size_t i = 0; i < pts.size(); ++i) out += (i ? " L" : "M") + frame.xy(pts[i]);
         out += " Z";
       };
       ring(r.outer);
@@ -70,10 +92,25 @@ std::string to_svg(const VisibilityMap& map, const Scene& scene, const View& vie
     }
     out += "</g>\n";
   }
+  char buf[128];
   std::snprintf(buf, sizeof buf, "<g stroke=\"black\" stroke-width=\"%.3f\" stroke-linecap=\"round\" fill=\"none\">\n",
                 std::max(0.5, opt.size / 1000));
   out += buf;
-  for (const auto& s : map.segments) out += "<path d=\"M" + xy(s.from) + " L" + xy(s.to) + "\"/>\n";
+  for (const auto& s : map.segments) out += "<path d=\"M" + frame.xy(s.from) + " L" + frame.xy(s.to) + "\"/>\n";
+  out += "</g>\n</svg>\n";
+  return out;
+}
+
+std::string to_painter_svg(const std::vector<PaintedFragment>& fragments, const VisibilityMap& map,
+                           const Scene& scene, const View& view, const SvgOptions& opt) {
+  const Frame frame(map, opt);
+  std::string out = frame.header();
+  out += "<g stroke=\"none\">\n";
+  for (const PaintedFragment& f : fragments) {   // in drawing order: later ones paint over
+    out += "<path fill=\"" + fill_of(scene, view, f.face) + "\" d=\"";
+    for (std::size_t i = 0; i < f.polygon.size(); ++i) out += (i ? " L" : "M") + frame.xy(f.polygon[i]);
+    out += " Z\"/>\n";
+  }
   out += "</g>\n</svg>\n";
   return out;
 }

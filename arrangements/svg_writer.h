@@ -6,6 +6,7 @@
 #include "arrangements/visibility_map.h"
 #include "engine/camera.h"
 #include "engine/scene.h"
+#include "engine/visibility.h"
 
 namespace vismap {
 
@@ -15,5 +16,11 @@ struct SvgOptions {
 };
 
 std::string to_svg(const VisibilityMap& map, const Scene& scene, const View& view, const SvgOptions& opt);
+
+// Newell's painter's drawing: the fragments filled one after another in drawing
+// order (back to front), each with its face's shade, on the same page as
+// to_svg's drawing of `map` (so the two can be laid over each other).
+std::string to_painter_svg(const std::vector<PaintedFragment>& fragments, const VisibilityMap& map,
+                           const Scene& scene, const View& view, const SvgOptions& opt);
 
 }  // namespace vismap

@@ -3,8 +3,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <new>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "arrangements/atomic_file.h"
@@ -13,13 +15,15 @@
 #include "engine/camera.h"
 #include "engine/scene.h"
 #include "engine/visibility.h"
+#include "verify/verify_cli.h"
 
 namespace {
 
 const char* kHelp = R"(usage: vismap SCENE [options]
+       vismap verify SCENE MAP.json [options]   (see 'vismap verify --help')
 
 Computes the exact visibility map of a polygon scene (OFF, OBJ, STL, PLY) and
-writes it as exact JSON and/or an SVG drawing.
+writes it as exact JSON and/or an SVG drawing. SCENE "-" is standard input.
 
 outputs (files are written whole or not at all; "-" is standard output):
   -o, --svg FILE       SVG drawing: visible regions shaded, visible lines stroked
@@ -35,12 +39,24 @@ lines:
   --crease DEG         dihedral angle making a shared edge a crease (default 30)
   --smooth             also draw smooth edges
 engine:
+  --algorithm A        franklin (default: Franklin's variable grid) or newell
+                       (Newell, Newell & Sancha's depth sort with plane
+                       splitting); both give the same map
   --grid-c C           Franklin's grid constant c, B = c*min(sqrt(N),1/L) (default 4)
+  --painter FILE       with --algorithm newell: SVG of the ordered, split
+                       fragments filled back to front (the painter's drawing)
   --stats              print statistics on stderr and add phase timings to the
                        JSON (without it the JSON is byte-for-byte reproducible)
+input:
+  --format F           off, obj, stl or ply: SCENE's format (default: by its
+                       extension; for standard input, by its content)
+  --max-memory SIZE    refuse, before reading it, a scene that would need more
+                       memory than SIZE (e.g. 512M, 8G; default: the physical
+                       memory, or a lower cgroup or ulimit -v limit)
   -h, --help           this text
 
-exit status: 0 success, 1 bad input or output error, 2 bad usage
+exit status: 0 success, 1 bad input or output error, 2 bad usage,
+3 internal error; killed by SIGINT/SIGTERM, it leaves no partial output
 )";
 
 struct Usage : std::runtime_error {
@@ -70,7 +86,13 @@ vismap::Vec3 parse_vec(const std::string& opt, const std::string& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scene_path, svg_path, json_path;
+  vismap::install_output_cleanup_handlers();
+  if (argc >= 2 && std::string(argv[1]) == "verify")
+    return vismap_check::verify_command(std::vector<std::string>(argv + 2, argv + argc));
+  std::string scene_path, svg_path, json_path, painter_path, format;
+  vismap::ReadLimits limits;
+  limits.max_memory = vismap::default_max_memory();
+  bool have_scene = false;
   vismap::CameraSpec cam;
   vismap::EngineOptions eng;
   vismap::SvgOptions svg;
@@ -85,6 +107,13 @@ int main(int argc, char** argv) {
       };
       if (a == "-h" || a == "--help") { std::fputs(kHelp, stdout); return 0; }
       else if (a == "-o" || a == "--svg") svg_path = value();
+      else if (a == "--painter") painter_path = value();
+      else if (a == "--algorithm") {
+        const std::string& v = value();
+        if (v == "franklin") eng.algorithm = vismap::Algorithm::Franklin;
+        else if (v == "newell") eng.algorithm = vismap::Algorithm::Newell;
+        else throw Usage("--algorithm expects franklin or newell, got '" + v + "'");
+      }
       else if (a == "--json") json_path = value();
       else if (a == "--lines-only") svg.lines_only = true;
       else if (a == "--dir") cam.dir = parse_vec(a, value());
@@ -100,12 +129,25 @@ int main(int argc, char** argv) {
         if (!(eng.grid_c > 0 && eng.grid_c <= 64)) throw Usage("--grid-c must be in (0, 64]");
       } else if (a == "--smooth") eng.smooth = true;
       else if (a == "--stats") stats = true;
+      else if (a == "--format") {
+        format = value();
+        if (format != "off" && format != "obj" && format != "stl" && format != "ply")
+          throw Usage("--format expects off, obj, stl or ply, got '" + format + "'");
+      } else if (a == "--max-memory") {
+        const std::string& v = value();
+        if (!vismap::parse_memory_size(v, limits.max_memory))
+          throw Usage("--max-memory expects a size such as 512M or 8G, got '" + v + "'");
+      }
       else if (a.size() > 1 && a[0] == '-') throw Usage("unknown option " + a);
-      else if (scene_path.empty()) scene_path = a;
+      else if (!have_scene) { scene_path = a; have_scene = true; }
       else throw Usage("more than one scene given: " + scene_path + ", " + a);
     }
     if (scene_path.empty()) throw Usage("no scene file given");
     if (!svg_path.empty() && svg_path == json_path) throw Usage("--json and -o name the same file");
+    if (!painter_path.empty() && eng.algorithm != vismap::Algorithm::Newell)
+      throw Usage("--painter needs --algorithm newell (the fragments are Newell's)");
+    if (!painter_path.empty() && (painter_path == json_path || painter_path == svg_path))
+      throw Usage("--painter names the same file as another output");
   } catch (const Usage& e) {
     std::fprintf(stderr, "vismap: %s\n(run 'vismap --help' for usage)\n", e.what());
     return 2;
@@ -115,7 +157,7 @@ int main(int argc, char** argv) {
   }
 
   try {
-    vismap::Scene scene = vismap::read_scene(scene_path);
+    vismap::Scene scene = vismap::read_scene(scene_path, limits, format);
     vismap::View view;
     try {
       view = vismap::make_view(cam, scene);
@@ -123,7 +165,10 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "vismap: %s\n", e.what());
       return 2;
     }
-    vismap::VisibilityMap map = vismap::visibility_franklin(scene, view, eng);
+    std::vector<vismap::PaintedFragment> fragments;
+    vismap::VisibilityMap map = eng.algorithm == vismap::Algorithm::Newell
+                                    ? vismap::visibility_newell(scene, view, eng, painter_path.empty() ? nullptr : &fragments)
+                                    : vismap::visibility_franklin(scene, view, eng);
     if (stats) {
       for (const auto& [k, v] : map.stats.counts) std::fprintf(stderr, "  %-36s %lld\n", k.c_str(), static_cast<long long>(v));
       for (const auto& [k, v] : map.stats.seconds) std::fprintf(stderr, "  %-36s %.3f s\n", k.c_str(), v);
@@ -133,14 +178,21 @@ int main(int argc, char** argv) {
     // Render everything first, then write: a failure leaves no half-written output.
     std::string json = json_path.empty() ? "" : vismap::to_json(map);
     std::string drawing = svg_path.empty() ? "" : vismap::to_svg(map, scene, view, svg);
-    if (!json_path.empty()) vismap::write_file_atomically(json_path, json);
-    if (!svg_path.empty()) vismap::write_file_atomically(svg_path, drawing);
-    if (json_path.empty() && svg_path.empty())
+    std::vector<std::pair<std::string, std::string>> outputs;
+    if (!json_path.empty()) outputs.emplace_back(json_path, std::move(json));
+    if (!svg_path.empty()) outputs.emplace_back(svg_path, std::move(drawing));
+    if (!painter_path.empty()) outputs.emplace_back(painter_path, vismap::to_painter_svg(fragments, map, scene, view, svg));
+    vismap::write_files_atomically(outputs);   // all or none
+    if (json_path.empty() && svg_path.empty() && painter_path.empty())
       std::fprintf(stderr, "vismap: %s: %zu regions, %zu segments (no output asked for: use -o or --json)\n",
                    scene_path.c_str(), map.regions.size(), map.segments.size());
     return 0;
   } catch (const vismap::InputError& e) {
     std::fprintf(stderr, "vismap: %s\n", e.what());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "vismap: %s: out of memory (the scene needs more than this machine has; see --max-memory)\n",
+                 scene_path.c_str());
     return 1;
   } catch (const std::logic_error& e) {
     std::fprintf(stderr, "vismap: internal error: %s\n", e.what());

@@ -44,6 +44,11 @@ std::vector<std::int8_t> closed_component_sides(
   std::vector<char> closed(n, 1);
   for (std::size_t i = 0; i < pieces.size(); ++i)
     if (!good[i]) for (const auto& s : pieces[i].sharers) closed[uf.find(s.facet)] = 0;
+  // A non-planar polygon's fan can fold over the polygon's own edge, and a face
+  // never hides its own edges (spec: "some face g not sharing e"): an edge between
+  // two back-facing pieces may then be visible. Such components are not culled.
+  for (int f = 0; f < n; ++f)
+    if (!wf.facets[f].planar) closed[uf.find(f)] = 0;
 
   // Eye outside: orthographic eyes are at infinity; a perspective eye must lie
   // strictly outside the component's bounding box, and the near plane must not cut it.

@@ -104,6 +104,12 @@ bool in_cell(const Grid& g, int ix, int iy, const P2& p) {
 int turn(const Facet& f) { return f.facing == Facing::Front ? 1 : -1; }
 
 // Corner p strictly inside the projection of the convex facet f.
+bool strictly_inside(const Facet& f, const P2& p) {
+  const std::size_t n = f.v.size();
+  for (std::size_t k = 0; k < n; ++k)
+    if (CGAL::orientation(f.v[k].xy(), f.v[(k + 1) % n].xy(), p) * turn(f) <= 0) return false;
+  return true;
+}
 bool strictly_inside(const Facet& f, const Corner& p) {
   const std::size_t n = f.v.size();
   for (std::size_t k = 0; k < n; ++k)
@@ -402,6 +408,21 @@ struct Cutter {
     if (o4 == CGAL::COLLINEAR && strictly_within(D, ct)) cut(di, ct);
   }
 
+  // A curve none of whose facets hides anything (they are all seen edge-on) gets
+  // no intersection lines, yet its visibility changes where it pierces a facet's
+  // plane inside the facet: cut it there.
+  void pierce(int ci, int fi) {
+    const Curve& C = ss.curves[ci];
+    const Facet& F = ss.facets[fi];
+    if (!CGAL::do_overlap(C.box, F.box)) return;
+    const FT ds = C.s.z - F.depth_at(C.s.xy()), dt = C.t.z - F.depth_at(C.t.xy());
+    if (CGAL::sign(ds) * CGAL::sign(dt) >= 0) return;
+    const P2 p = C.s.xy() + (ds / (ds - dt)) * (C.t.xy() - C.s.xy());
+    if (!strictly_inside(F, p)) return;   // on its boundary: that edge's crossing cuts here
+    ++crossings;
+    cut(ci, p);
+  }
+
   // Collinear curves: cut each at the other's end points inside it, and both where
   // their depths cross, so that the first in depth order is constant on each piece.
   void overlap(int ci, int di) {
@@ -432,9 +453,16 @@ std::vector<std::vector<P2>> cut_curves(Grid& g, const ScreenScene& ss, Stats& s
     for (int ix = 0; ix < g.B; ++ix) {
       cutter.ix = ix;
       cutter.iy = iy;
-      const auto& cs = g.at(ix, iy).curves;
+      const Cell& cell = g.at(ix, iy);
+      const auto& cs = cell.curves;
       for (std::size_t i = 0; i < cs.size(); ++i)
         for (std::size_t j = i + 1; j < cs.size(); ++j) cutter.intersect(cs[i], cs[j]);
+      for (int ci : cs) {
+        const Curve& cv = ss.curves[ci];
+        if (std::any_of(cv.sharers.begin(), cv.sharers.end(), [&](int s) { return ss.facets[s].occluder; })) continue;
+        for (int fi : cell.facets) cutter.pierce(ci, fi);
+        if (cell.blocker >= 0) cutter.pierce(ci, cell.blocker);
+      }
     }
   stats.count("edge_pairs_tested", cutter.pairs);
   stats.count("intersections", cutter.crossings);

@@ -20,6 +20,7 @@ struct WorldFacet {
   int face = -1;                        // input face index
   std::vector<std::uint32_t> v;         // input vertex ids, in the polygon's order
   std::vector<EdgeRole> role;           // role[i]: edge v[i] -> v[i+1]
+  bool planar = true;                   // false: a fan piece of a non-planar polygon
 };
 
 struct WorldFacets {

@@ -5,6 +5,10 @@
 // comment. Faces are numbered in the order of their "f" lines. A positive
 // index may refer to a vertex defined later in the file (checked at the end).
 // A line ending in a backslash continues on the next line (OBJ spec).
+// A record's keyword must look like one (letters, digits, '_', starting with a
+// letter or '_'), so that binary junk is an error rather than an empty scene;
+// and a file with no record at all (empty, or only blanks and comments) is an
+// error too.
 #include <vector>
 
 #include "engine/io/formats.h"
@@ -62,6 +66,17 @@ std::int64_t corner_vertex(const TextCursor& c, std::string_view tok) {
   return v;
 }
 
+// What an OBJ keyword looks like: [A-Za-z_][A-Za-z0-9_]*.
+bool is_keyword(std::string_view tok) {
+  if (tok.empty()) return false;
+  for (std::size_t i = 0; i < tok.size(); ++i) {
+    const char ch = tok[i];
+    const bool letter = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || ch == '_';
+    if (!letter && !(i > 0 && ch >= '0' && ch <= '9')) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 void read_obj(std::string_view bytes, const std::string& name, const ReadLimits& limits, Scene& out) {
@@ -81,9 +96,19 @@ void read_obj(std::string_view bytes, const std::string& name, const ReadLimits&
   };
   std::vector<Forward> forward;
   std::vector<std::uint32_t> corners;  // reused between faces
+  std::uint64_t corner_total = 0;
+  auto check_memory = [&] {
+    if (over_memory(limits, bytes.size(), out.vertices.size(), out.faces.size(), corner_total)) {
+      c.fail(memory_problem(limits, bytes.size(), out.vertices.size(), out.faces.size(), corner_total,
+                            cat(out.vertices.size(), " vertices and ", out.faces.size(), " faces")));
+    }
+  };
 
+  bool any_record = false;
   while (c.skip_blank_lines()) {
     const std::string_view keyword = c.token();
+    if (!is_keyword(keyword)) c.fail_expected("an OBJ record such as 'v' or 'f'", keyword);
+    any_record = true;
     if (keyword == "v") {
       const std::size_t i = out.vertices.size() + 1;  // OBJ numbering in messages
       if (i > vmax) c.fail(cat("more than ", vmax, " vertices, the limit"));
@@ -92,6 +117,7 @@ void read_obj(std::string_view bytes, const std::string& name, const ReadLimits&
         xyz[a] = c.coordinate([&] { return cat("the ", "xyz"[a], " coordinate of vertex ", i); });
       }
       out.vertices.push_back({xyz[0], xyz[1], xyz[2]});  // w and any vertex colour are ignored
+      check_memory();
     } else if (keyword == "f") {
       const std::size_t f = out.faces.size();
       if (f >= limits.max_faces) c.fail(cat("more than ", limits.max_faces, " faces, the limit"));
@@ -120,9 +146,13 @@ void read_obj(std::string_view bytes, const std::string& name, const ReadLimits&
       }
       if (corners.size() < 3) c.fail(cat("face ", f, " has ", corners.size(), " corners; a face needs at least 3"));
       out.faces.emplace_back(corners.begin(), corners.end());
+      corner_total += corners.size();
+      check_memory();
     }
     c.next_line();
   }
+
+  if (!any_record) c.fail("no OBJ records (an empty file, or only comments); expected 'v' and 'f' lines");
 
   for (const Forward& fw : forward) {
     if (static_cast<std::uint64_t>(fw.index) > out.vertices.size()) {

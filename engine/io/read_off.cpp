@@ -2,6 +2,7 @@
 // one vertex "x y z ..." per line and one face "n i1 .. in ..." per line.
 // '#' starts a comment; blank lines are skipped; values after the ones we need
 // (vertex colours, face colours) are ignored, as is anything after the faces.
+#include <algorithm>
 #include <vector>
 
 #include "engine/io/formats.h"
@@ -26,6 +27,9 @@ void read_off(std::string_view bytes, const std::string& name, const ReadLimits&
   // Refuse impossible counts before allocating: over the limits, or more than
   // the rest of the file could hold ("0 0 0\n" is 6 bytes, "3 0 1 2\n" is 8;
   // the last line may lack its newline).
+  const std::string mem = memory_problem(limits, bytes.size(), nv, nf, 3 * std::min<std::uint64_t>(nf, ~0ull / 4),
+                                         cat("the header's ", nv, " vertices and ", nf, " faces"));
+  if (!mem.empty()) c.fail(mem);
   if (nv > vertex_limit(limits)) c.fail(cat("vertex count ", nv, " exceeds the limit of ", vertex_limit(limits)));
   if (nf > limits.max_faces) c.fail(cat("face count ", nf, " exceeds the limit of ", limits.max_faces));
   std::uint64_t budget = bytes.size() - c.offset() + 1;

@@ -3,6 +3,7 @@
 // order) and the list "vertex_indices" (or "vertex_index") from element "face".
 // Every other property and element is read past. In ASCII each record is one
 // line (blank lines skipped); in binary, records are packed after the header.
+#include <algorithm>
 #include <optional>
 #include <vector>
 
@@ -189,6 +190,15 @@ Roles find_roles(const Header& h, const std::string& name) {
 // before anything is allocated for them.
 void check_counts(const Header& h, const Roles& r, std::uint64_t file_size, const std::string& name,
                   const ReadLimits& limits) {
+  const std::uint64_t nv = r.vertex ? r.vertex->count : 0, nf = r.face ? r.face->count : 0;
+  const std::string mem = memory_problem(limits, file_size, nv, nf, 3 * std::min<std::uint64_t>(nf, ~0ull / 4),
+                                         cat("the header's ", nv, " vertices and ", nf, " faces"));
+  if (!mem.empty()) {
+    std::uint64_t line = 1;  // the later of the two element lines
+    if (r.vertex) line = r.vertex->line;
+    if (r.face && r.face->line > line) line = r.face->line;
+    fail_at_line(name, line, mem);
+  }
   if (r.vertex && r.vertex->count > vertex_limit(limits)) {
     fail_at_line(name, r.vertex->line,
                  cat("vertex count ", r.vertex->count, " exceeds the limit of ", vertex_limit(limits)));

@@ -23,6 +23,8 @@ std::uint64_t binary_count(std::string_view bytes) {
 
 void read_binary(std::string_view bytes, const std::string& name, const ReadLimits& limits, Scene& out) {
   const std::uint64_t n = binary_count(bytes);  // the caller checked the size
+  const std::string mem = memory_problem(limits, bytes.size(), 3 * n, n, 3 * n, cat("the header's ", n, " triangles"));
+  if (!mem.empty()) fail_at_byte(name, 80, mem);
   if (n > limits.max_faces || 3 * n > vertex_limit(limits)) {
     fail_at_byte(name, 80, cat("binary STL header says ", n, " triangles, more than the limits allow (",
                                limits.max_faces, " faces, ", vertex_limit(limits), " vertices)"));
@@ -103,6 +105,10 @@ void read_ascii(std::string_view bytes, const std::string& name, const ReadLimit
     expect_keyword(c, "endloop");
     expect_keyword(c, "endfacet");
     out.faces.push_back({v0, v0 + 1, v0 + 2});
+    if (over_memory(limits, bytes.size(), out.vertices.size(), out.faces.size(), 3 * out.faces.size())) {
+      c.fail(memory_problem(limits, bytes.size(), out.vertices.size(), out.faces.size(), 3 * out.faces.size(),
+                            cat(out.faces.size(), " triangles")));
+    }
   }
 }
 

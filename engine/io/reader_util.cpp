@@ -44,6 +44,14 @@ std::uint64_t vertex_limit(const ReadLimits& limits) {
   return std::min<std::uint64_t>(limits.max_vertices, std::numeric_limits<std::uint32_t>::max());
 }
 
+std::string memory_problem(const ReadLimits& limits, std::uint64_t file_bytes, std::uint64_t vertices,
+                           std::uint64_t faces, std::uint64_t corners, std::string_view what) {
+  if (!over_memory(limits, file_bytes, vertices, faces, corners)) return {};
+  const std::uint64_t need = estimate_memory(file_bytes, vertices, faces, corners);
+  return cat(what, " would need about ", format_bytes(need), " of memory, more than the limit of ",
+             format_bytes(limits.max_memory), " (set with --max-memory)");
+}
+
 // --- Numbers --------------------------------------------------------------------
 
 namespace {

@@ -28,6 +28,20 @@ std::string quote(std::string_view token);
 // Most vertices a scene can have: the limit, capped so indices fit uint32.
 std::uint64_t vertex_limit(const ReadLimits& limits);
 
+// Empty when a scene of this size fits limits.max_memory (estimate_memory);
+// otherwise the message: "<what> would need about 1.9 TiB of memory, more than
+// the limit of 8 GiB (set with --max-memory)". `what` says what has the size,
+// e.g. "the header's 3 vertices and 1000000000 faces".
+std::string memory_problem(const ReadLimits& limits, std::uint64_t file_bytes, std::uint64_t vertices,
+                           std::uint64_t faces, std::uint64_t corners, std::string_view what);
+
+// For readers that learn the size as they go (OBJ, ASCII STL): a message, or
+// empty, for the scene read so far. Cheap; call it per record.
+inline bool over_memory(const ReadLimits& limits, std::uint64_t file_bytes, std::uint64_t vertices,
+                        std::uint64_t faces, std::uint64_t corners) {
+  return limits.max_memory != 0 && estimate_memory(file_bytes, vertices, faces, corners) > limits.max_memory;
+}
+
 // --- Numbers --------------------------------------------------------------------
 // Whole-token parses; false when the token is not entirely one number.
 // parse_double gives the nearest double (from_chars semantics, a leading '+'

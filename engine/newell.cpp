@@ -1,0 +1,86 @@
+// Newell, Newell & Sancha 1972, "A solution to the hidden surface problem",
+// the extended algorithm, exact, with an exact overlay in place of the screen
+// map. One call per step; the steps live in screen_scene.cpp (the shared front
+// end), newell_order.cpp (the ordered list), newell_overlay.cpp (fragments ->
+// pieces) and arrangements/map_builder.cpp (the map). Stats follow the paper's
+// Figure 2: faces in, faces considered, fragments written, and the time spent
+// ordering and slicing and writing the fragments.
+#include <chrono>
+
+#include "arrangements/map_builder.h"
+#include "engine/newell_order.h"
+#include "engine/newell_overlay.h"
+#include "engine/screen_scene.h"
+#include "engine/visibility.h"
+
+namespace vismap {
+
+namespace {
+struct Clock {
+  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+  double lap() {
+    auto t = std::chrono::steady_clock::now();
+    double s = std::chrono::duration<double>(t - t0).count();
+    t0 = t;
+    return s;
+  }
+};
+}  // namespace
+
+VisibilityMap visibility_newell(const Scene& scene, const View& view, const EngineOptions& opt,
+                                std::vector<PaintedFragment>* painter) {
+  using namespace engine;
+  VisibilityMap map;
+  map.scene_file = scene.file;
+  map.scene_faces = scene.faces.size();
+  map.perspective = view.perspective;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) map.view[r][c] = mpq_class(view.m[r][c]);
+  Stats& st = map.stats;
+  st.count("faces_read", static_cast<std::int64_t>(scene.faces.size()));
+  const exact::FilterCounts filter_before = exact::filter_counts;
+  Clock clock;
+
+  // Transforming and initialising: project exactly, drop what cannot be seen
+  // (outside, edge-on, back faces of closed solids), as Franklin's engine does.
+  ScreenScene ss = make_screen_scene(scene, view, opt, st);
+  st.time("project_and_cull", clock.lap());
+
+  // Ordering and slicing faces: the list by farthest depth, the five tests,
+  // reordering with marks, splitting by planes.
+  std::vector<Fragment> order = depth_sort(ss, st);
+  st.time("order_and_split", clock.lap());
+
+  // Writing the fragments, exactly: every line that may be drawn or bound a
+  // region (intersection lines of piercing faces included) cut where anything on
+  // it may change, each piece judged by what is painted beside and over it.
+  add_piercing_lines(ss, st);
+  drop_painted_over(ss, order, st);
+  std::vector<std::vector<Cut>> cuts = cut_at_crossings(ss, st);
+  st.time("intersections", clock.lap());
+  std::vector<MapPiece> pieces = paint_pieces(ss, order, cuts, st);
+  std::vector<std::vector<Cut>>().swap(cuts);   // freed here, and counted here
+  st.time("overlay", clock.lap());
+
+  // The planar arrangement of the kept pieces, its regions labelled.
+  build_map(pieces, map);
+  st.time("arrangement", clock.lap());
+  st.count("visible_segments", static_cast<std::int64_t>(map.segments.size()));
+  st.count("regions", static_cast<std::int64_t>(map.regions.size()));
+  st.count("predicates", exact::filter_counts.calls - filter_before.calls);
+  st.count("predicates_exact", exact::filter_counts.exact - filter_before.exact);
+
+  if (painter) {
+    painter->clear();
+    painter->reserve(order.size());
+    for (const Fragment& f : order) {
+      PaintedFragment pf;
+      pf.face = f.face;
+      for (const exact::P3& p : f.v) pf.polygon.push_back(Point2{exact::to_mpq(p.x), exact::to_mpq(p.y)});
+      painter->push_back(std::move(pf));
+    }
+  }
+  return map;
+}
+
+}  // namespace vismap

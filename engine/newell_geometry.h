@@ -1,0 +1,153 @@
+// Small exact helpers shared by Newell's depth sort and its overlay: split lines
+// (affine functions of the screen point), which side of a line or of a facet's
+// plane a polygon lies on, and bounding boxes. Internal to the engine.
+#pragma once
+#include <vector>
+
+#include "engine/screen_scene.h"
+
+namespace vismap::engine::newell {
+
+// An exact leaf: the value computed now, so that later predicates see a number.
+inline FT leaf(const FT& x) { return FT(to_mpq(x)); }
+
+inline CGAL::Bbox_2 box_of(const std::vector<P3>& v) {
+  CGAL::Bbox_2 b;
+  for (const P3& p : v) {
+    auto ix = CGAL::to_interval(p.x), iy = CGAL::to_interval(p.y);
+    b += CGAL::Bbox_2(ix.first, iy.first, ix.second, iy.second);
+  }
+  return b;
+}
+
+using Interval = CGAL::Interval_nt<false>;
+
+// The sign of an expression: on the intervals of its operands if they decide
+// it, else exactly in GMP rationals. Counted like CGAL's own filters.
+template <class OnIntervals, class OnRationals>
+CGAL::Sign filtered_sign(OnIntervals&& approx, OnRationals&& exact) {
+  ++exact::filter_counts.calls;
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const Interval v = approx();
+    if (v.inf() > 0) return CGAL::POSITIVE;
+    if (v.sup() < 0) return CGAL::NEGATIVE;
+  }
+  ++exact::filter_counts.exact;
+  return static_cast<CGAL::Sign>(sgn(exact()));
+}
+
+// An affine function of the screen point, f(x, y) = a x + b y + c: a split line.
+struct Line {
+  FT a, b, c;
+  FT at(const FT& x, const FT& y) const { return a * x + b * y + c; }
+  CGAL::Sign sign_at(const P3& p) const {
+    return filtered_sign([&] { return a.approx() * p.x.approx() + b.approx() * p.y.approx() + c.approx(); },
+                         [&]() -> mpq_class { return to_mpq(a) * to_mpq(p.x) + to_mpq(b) * to_mpq(p.y) + to_mpq(c); });
+  }
+};
+
+// Orientation of (p, q, r) on the screen: positive when r is left of p -> q.
+inline CGAL::Sign orient(const P3& p, const P3& q, const P3& r) {
+  return filtered_sign(
+      [&] {
+        return (q.x.approx() - p.x.approx()) * (r.y.approx() - p.y.approx()) -
+               (q.y.approx() - p.y.approx()) * (r.x.approx() - p.x.approx());
+      },
+      [&]() -> mpq_class {
+        return (to_mpq(q.x) - to_mpq(p.x)) * (to_mpq(r.y) - to_mpq(p.y)) -
+               (to_mpq(q.y) - to_mpq(p.y)) * (to_mpq(r.x) - to_mpq(p.x));
+      });
+}
+
+// sign((q - p) . (t - s)) and sign((q - p) x (t - s)) on the screen.
+inline CGAL::Sign dot_sign(const P3& p, const P3& q, const P3& s, const P3& t) {
+  return filtered_sign(
+      [&] {
+        return (q.x.approx() - p.x.approx()) * (t.x.approx() - s.x.approx()) +
+               (q.y.approx() - p.y.approx()) * (t.y.approx() - s.y.approx());
+      },
+      [&]() -> mpq_class {
+        return (to_mpq(q.x) - to_mpq(p.x)) * (to_mpq(t.x) - to_mpq(s.x)) +
+               (to_mpq(q.y) - to_mpq(p.y)) * (to_mpq(t.y) - to_mpq(s.y));
+      });
+}
+inline CGAL::Sign cross_sign(const P3& p, const P3& q, const P3& s, const P3& t) {
+  return filtered_sign(
+      [&] {
+        return (q.x.approx() - p.x.approx()) * (t.y.approx() - s.y.approx()) -
+               (q.y.approx() - p.y.approx()) * (t.x.approx() - s.x.approx());
+      },
+      [&]() -> mpq_class {
+        return (to_mpq(q.x) - to_mpq(p.x)) * (to_mpq(t.y) - to_mpq(s.y)) -
+               (to_mpq(q.y) - to_mpq(p.y)) * (to_mpq(t.x) - to_mpq(s.x));
+      });
+}
+
+// Where the planes of facets F and G cross: f = depth_F - depth_G.
+inline Line plane_crossing(const Facet& F, const Facet& G) { return {F.a - G.a, F.b - G.b, F.c - G.c}; }
+
+// The line through screen points p and q (positive to the left of p -> q).
+inline Line line_through(const P3& p, const P3& q) {
+  FT a = p.y - q.y, b = q.x - p.x;
+  return {a, b, -(a * p.x + b * p.y)};
+}
+
+// Where the line f = 0 crosses segment a -> b, f changing sign strictly between
+// them: an exact leaf point (x, y).
+inline std::pair<FT, FT> edge_crossing(const P3& a, const P3& b, const Line& f) {
+  const FT fa = f.at(a.x, a.y), fb = f.at(b.x, b.y);
+  const FT t = fa / (fa - fb);
+  return {leaf(a.x + t * (b.x - a.x)), leaf(a.y + t * (b.y - a.y))};
+}
+
+// The depth of facet F's plane at (x, y).
+inline FT depth_of(const Facet& F, const FT& x, const FT& y) { return F.a * x + F.b * y + F.c; }
+
+// Which sides of a line (or plane) a polygon has vertices strictly on.
+enum : int { kNeg = 1, kPos = 2, kBoth = 3 };
+
+inline int sides_of(const std::vector<P3>& v, const Line& f) {
+  int s = 0;
+  for (const P3& p : v) {
+    auto g = f.sign_at(p);
+    s |= g > 0 ? kPos : g < 0 ? kNeg : 0;
+    if (s == kBoth) break;
+  }
+  return s;
+}
+
+// sign(p.z - depth of G at p): positive when p is behind G's plane.
+inline CGAL::Sign plane_side(const P3& p, const Facet& G) {
+  return filtered_sign(
+      [&] { return p.z.approx() - (G.a.approx() * p.x.approx() + G.b.approx() * p.y.approx() + G.c.approx()); },
+      [&]() -> mpq_class {
+        return to_mpq(p.z) - (to_mpq(G.a) * to_mpq(p.x) + to_mpq(G.b) * to_mpq(p.y) + to_mpq(G.c));
+      });
+}
+
+// p is one of G's own vertices (the very same numbers, as where facets of a mesh
+// share a vertex): in G's plane, with no arithmetic.
+inline bool is_vertex_of(const P3& p, const Facet& G) {
+  for (const P3& q : G.v)
+    if (p.x.identical(q.x) && p.y.identical(q.y) && p.z.identical(q.z)) return true;
+  return false;
+}
+
+// Relative to the plane of facet G (index g): kPos = strictly behind (deeper),
+// kNeg = strictly in front (nearer); 0: in the plane. `cut_on[k]` (may be empty)
+// names a facet whose plane vertex k is known to lie on (it was cut there).
+inline int sides_of_plane(const std::vector<P3>& v, const std::vector<int>& cut_on, int g, const Facet& G) {
+  int s = 0;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    if (!cut_on.empty() && cut_on[k] == g) continue;
+    if (is_vertex_of(v[k], G)) continue;
+    const auto c = plane_side(v[k], G);
+    s |= c == CGAL::POSITIVE ? kPos : c == CGAL::NEGATIVE ? kNeg : 0;
+    if (s == kBoth) break;
+  }
+  return s;
+}
+constexpr int kBehind = kPos, kFront = kNeg;
+
+}  // namespace vismap::engine::newell

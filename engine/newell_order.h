@@ -1,0 +1,28 @@
+// Newell, Newell & Sancha 1972, "the extended algorithm": the occluding facets as
+// a list of convex fragments in drawing order (back to front), so that painting
+// them in that order paints the right face everywhere. Internal to the engine.
+#pragma once
+#include <vector>
+
+#include "engine/screen_scene.h"
+
+namespace vismap::engine {
+
+// A piece of one facet: convex, counter-clockwise on the screen, in its facet's
+// plane (z = the facet's depth there), no two equal consecutive vertices.
+struct Fragment {
+  int facet = -1;                // index in ScreenScene::facets
+  int face = -1;                 // input face index
+  std::vector<P3> v;
+  std::vector<int> cut_on;       // per vertex: the facet on whose plane it was cut, or -1
+  CGAL::Bbox_2 box;              // contains the exact projection
+};
+
+// The ordered list, first drawn first. For any two fragments whose projections
+// overlap in an open set, the later one comes first in the order (depth, face
+// index) wherever they overlap: nearer, or at equal depth of a lower face index.
+// Counts (faces_considered, pair_tests, reorders, splits_by_plane, splits_by_cut,
+// fragments_written) go to `stats`.
+std::vector<Fragment> depth_sort(const ScreenScene& ss, Stats& stats);
+
+}  // namespace vismap::engine

@@ -1,0 +1,535 @@
+// Newell's fragments -> map pieces, exact. A uniform bucket grid over bounding
+// boxes (doubles that contain the exact values) only proposes candidates; every
+// decision is an exact predicate.
+#include "engine/newell_overlay.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "engine/newell_geometry.h"
+
+namespace vismap::engine {
+namespace {
+
+using namespace newell;
+
+// A box around a (constructed) point. A crossing of two nearly parallel lines
+// can carry an unbounded interval until its exact value is asked for: then it is.
+CGAL::Bbox_2 box_of_point(const P2& p) {
+  auto b = CGAL::approx(p).bbox();
+  if (!std::isfinite(b.xmin()) || !std::isfinite(b.xmax()) || !std::isfinite(b.ymin()) || !std::isfinite(b.ymax())) {
+    CGAL::exact(p);
+    b = CGAL::approx(p).bbox();
+  }
+  return b;
+}
+
+// Items by bounding box in a uniform grid of buckets. An item is listed in every
+// bucket its box meets; a pair (or an item and a query box) is reported only by
+// the bucket holding the lower-left corner of their boxes' common part, so once.
+class BoxGrid {
+ public:
+  explicit BoxGrid(const std::vector<CGAL::Bbox_2>& boxes) : boxes_(boxes) {
+    if (boxes.empty()) return;
+    CGAL::Bbox_2 all = boxes[0];
+    double sizes = 0;
+    for (const auto& b : boxes) {
+      all += b;
+      sizes += std::max(b.xmax() - b.xmin(), b.ymax() - b.ymin());
+    }
+    const double n = static_cast<double>(boxes.size());
+    const double extent = std::max(all.xmax() - all.xmin(), all.ymax() - all.ymin());
+    double b = std::sqrt(n);
+    if (sizes > 0 && extent > 0) b = std::min(b, 2 * extent * n / sizes);   // cells about half an item wide
+    B_ = static_cast<int>(std::clamp(b, 1.0, 1024.0));
+    x0_ = all.xmin();
+    y0_ = all.ymin();
+    w_ = (all.xmax() - x0_) / B_;
+    h_ = (all.ymax() - y0_) / B_;
+    if (!(w_ > 0)) w_ = 1;
+    if (!(h_ > 0)) h_ = 1;
+    cells_.resize(static_cast<std::size_t>(B_) * B_);
+    for (int i = 0; i < static_cast<int>(boxes.size()); ++i) {
+      const auto& bx = boxes[i];
+      for (int iy = cy(bx.ymin()); iy <= cy(bx.ymax()); ++iy)
+        for (int ix = cx(bx.xmin()); ix <= cx(bx.xmax()); ++ix) cells_[cell(ix, iy)].push_back(i);
+    }
+  }
+
+  // f(i, j), i < j, for every two items whose boxes overlap.
+  template <class F>
+  void pairs(F&& f) const {
+    for (int c = 0; c < static_cast<int>(cells_.size()); ++c) {
+      const auto& l = cells_[c];
+      for (std::size_t a = 0; a < l.size(); ++a)
+        for (std::size_t b = a + 1; b < l.size(); ++b) {
+          const auto &p = boxes_[l[a]], &q = boxes_[l[b]];
+          if (!CGAL::do_overlap(p, q)) continue;
+          if (cell(cx(std::max(p.xmin(), q.xmin())), cy(std::max(p.ymin(), q.ymin()))) != c) continue;
+          f(std::min(l[a], l[b]), std::max(l[a], l[b]));
+        }
+    }
+  }
+
+  // f(i) for every item whose box overlaps q.
+  template <class F>
+  void overlapping(const CGAL::Bbox_2& q, F&& f) const {
+    if (cells_.empty()) return;
+    for (int iy = cy(q.ymin()); iy <= cy(q.ymax()); ++iy)
+      for (int ix = cx(q.xmin()); ix <= cx(q.xmax()); ++ix) {
+        const int c = cell(ix, iy);
+        for (int i : cells_[c]) {
+          const auto& p = boxes_[i];
+          if (!CGAL::do_overlap(p, q)) continue;
+          if (cell(cx(std::max(p.xmin(), q.xmin())), cy(std::max(p.ymin(), q.ymin()))) != c) continue;
+          f(i);
+        }
+      }
+  }
+
+ private:
+  // Monotone in x, so a point of a box falls in the box's range of cells.
+  int cx(double x) const { return index((x - x0_) / w_); }
+  int cy(double y) const { return index((y - y0_) / h_); }
+  int index(double u) const {
+    if (!(u >= 0)) return 0;   // below the grid (or NaN)
+    return u >= B_ ? B_ - 1 : static_cast<int>(u);
+  }
+  int cell(int ix, int iy) const { return iy * B_ + ix; }
+
+  const std::vector<CGAL::Bbox_2>& boxes_;
+  int B_ = 1;
+  double x0_ = 0, y0_ = 0, w_ = 1, h_ = 1;
+  std::vector<std::vector<int>> cells_;
+};
+
+// ---- intersection lines ------------------------------------------------------------
+
+// The chord the line f = 0 cuts from a convex polygon that has vertices strictly
+// on both sides of it: its two boundary points (vertices on the line, or where
+// edges cross it), as exact leaves (x, y).
+std::array<std::pair<FT, FT>, 2> chord(const std::vector<P3>& v, const Line& f) {
+  const std::size_t n = v.size();
+  std::vector<CGAL::Sign> sg(n);
+  for (std::size_t k = 0; k < n; ++k) sg[k] = f.sign_at(v[k]);
+  std::array<std::pair<FT, FT>, 2> ends;
+  int found = 0;
+  for (std::size_t k = 0; k < n && found < 2; ++k) {
+    const std::size_t k1 = (k + 1) % n;
+    if (sg[k] == CGAL::ZERO) ends[found++] = {v[k].x, v[k].y};
+    else if (sg[k] * sg[k1] < 0) ends[found++] = edge_crossing(v[k], v[k1], f);
+  }
+  if (found != 2) throw std::logic_error("newell: a crossing line meets a convex facet in other than two points");
+  return ends;
+}
+
+// Where facets A and B cross in 3D strictly inside both projections: each has
+// vertices strictly on both sides of the other's plane, and the chords the
+// planes' crossing line cuts from them overlap in more than a point.
+bool piercing_segment(const Facet& A, const Facet& B, P3& p, P3& q) {
+  if (sides_of_plane(A.v, {}, -1, B) != kBoth || sides_of_plane(B.v, {}, -1, A) != kBoth) return false;
+  const Line f = plane_crossing(A, B);
+  auto a = chord(A.v, f), b = chord(B.v, f);
+  // Order along the line, direction (-f.b, f.a).
+  auto key = [&](const std::pair<FT, FT>& x) { return f.a * x.second - f.b * x.first; };
+  if (key(a[1]) < key(a[0])) std::swap(a[0], a[1]);
+  if (key(b[1]) < key(b[0])) std::swap(b[0], b[1]);
+  const auto& lo = key(a[0]) < key(b[0]) ? b[0] : a[0];   // the later start
+  const auto& hi = key(a[1]) < key(b[1]) ? a[1] : b[1];   // the earlier end
+  if (!(key(lo) < key(hi))) return false;
+  p = P3{lo.first, lo.second, leaf(depth_of(A, lo.first, lo.second))};
+  q = P3{hi.first, hi.second, leaf(depth_of(A, hi.first, hi.second))};
+  return true;
+}
+
+// ---- cutting curves ----------------------------------------------------------------
+
+struct Cutter {
+  const ScreenScene& ss;
+  std::vector<std::vector<Cut>>& cuts;
+  std::int64_t pairs = 0, crossings = 0;
+
+  void cut(int c, const P2& p, bool depth = false) { cuts[c].push_back(Cut{p, depth}); }
+
+  // p lies on C's line strictly between its end points.
+  static bool inside(const Curve& C, const P2& p) {
+    return CGAL::collinear_are_strictly_ordered_along_line(C.s.xy(), p, C.t.xy());
+  }
+
+  void pair(int ci, int di) {
+    const Curve &C = ss.curves[ci], &D = ss.curves[di];
+    ++pairs;
+    const P2 c0 = C.s.xy(), c1 = C.t.xy(), d0 = D.s.xy(), d1 = D.t.xy();
+    // End points that are one input vertex need no predicate to meet there.
+    auto same = [](long a, long b) { return a >= 0 && a == b; };
+    if (same(C.vs, D.vs) || same(C.vs, D.vt) || same(C.vt, D.vs) || same(C.vt, D.vt)) {
+      // From the common point o they go to c and d: only if they leave o in the
+      // same direction does one continue past the other's end. Their depths agree
+      // at o and are affine along the common part, so they cannot cross in it.
+      const bool at_cs = same(C.vs, D.vs) || same(C.vs, D.vt);
+      const P2 o = at_cs ? c0 : c1, c = at_cs ? c1 : c0;
+      const P2 d = (same(C.vs, D.vs) || same(C.vt, D.vs)) ? d1 : d0;
+      if (CGAL::orientation(o, c, d) != CGAL::COLLINEAR || !CGAL::is_positive((c - o) * (d - o))) return;
+      if (inside(C, d)) cut(ci, d);
+      else if (inside(D, c)) cut(di, c);
+      return;
+    }
+    const auto o1 = CGAL::orientation(c0, c1, d0), o2 = CGAL::orientation(c0, c1, d1);
+    if (o1 == o2 && o1 != CGAL::COLLINEAR) return;   // D wholly on one side of C's line
+    if (o1 == CGAL::COLLINEAR && o2 == CGAL::COLLINEAR) { collinear(ci, di); return; }
+    const auto o3 = CGAL::orientation(d0, d1, c0), o4 = CGAL::orientation(d0, d1, c1);
+    if (o3 == o4 && o3 != CGAL::COLLINEAR) return;
+    if (o1 != CGAL::COLLINEAR && o2 != CGAL::COLLINEAR && o3 != CGAL::COLLINEAR && o4 != CGAL::COLLINEAR) {
+      // A proper crossing.
+      const V2 u = c1 - c0, v = d1 - d0, w = d0 - c0;
+      const FT lambda = (w.x() * v.y() - w.y() * v.x()) / (u.x() * v.y() - u.y() * v.x());
+      const P2 x = c0 + lambda * u;
+      cut(ci, x);
+      cut(di, x);
+      ++crossings;
+      return;
+    }
+    // One ends on the other.
+    if (o1 == CGAL::COLLINEAR && inside(C, d0)) cut(ci, d0);
+    if (o2 == CGAL::COLLINEAR && inside(C, d1)) cut(ci, d1);
+    if (o3 == CGAL::COLLINEAR && inside(D, c0)) cut(di, c0);
+    if (o4 == CGAL::COLLINEAR && inside(D, c1)) cut(di, c1);
+  }
+
+  // On one line: each is cut at the other's end points inside it and, where both
+  // are present, where their depths cross (so one of them is first on each piece).
+  void collinear(int ci, int di) {
+    const Curve &C = ss.curves[ci], &D = ss.curves[di];
+    const P2 c0 = C.s.xy(), c1 = C.t.xy(), d0 = D.s.xy(), d1 = D.t.xy();
+    const P2 clo = std::min(c0, c1), chi = std::max(c0, c1), dlo = std::min(d0, d1), dhi = std::max(d0, d1);
+    const P2 lo = std::max(clo, dlo), hi = std::min(chi, dhi);   // lexicographic order is the order along the line
+    if (!(lo < hi)) return;                                       // they meet in a point at most
+    for (const P2& p : {d0, d1}) if (inside(C, p)) cut(ci, p);
+    for (const P2& p : {c0, c1}) if (inside(D, p)) cut(di, p);
+    const FT flo = depth_on(C, lo) - depth_on(D, lo), fhi = depth_on(C, hi) - depth_on(D, hi);
+    if (CGAL::sign(flo) * CGAL::sign(fhi) < 0) {
+      const P2 x = lo + (flo / (flo - fhi)) * (hi - lo);
+      cut(ci, x, true);
+      cut(di, x, true);
+      ++crossings;
+    }
+  }
+};
+
+// ---- painting ------------------------------------------------------------------------
+
+// The curve being painted: its ends, and which fragment sides lie on its line
+// (decided once per side, on exact leaves, and only for sides the intervals
+// cannot tell from the midpoint: those are nearly always its own facets' edges
+// and the split lines along an intersection line).
+struct CurveLine {
+  const P3 &s, &t;
+  std::unordered_map<std::uint64_t, bool> on_line;
+  bool side_on_line(int frag, std::size_t k, const P3& p, const P3& q) {
+    auto [it, fresh] = on_line.try_emplace((static_cast<std::uint64_t>(frag) << 24) | k, false);
+    if (fresh) it->second = orient(p, q, s) == CGAL::ZERO && orient(p, q, t) == CGAL::ZERO;
+    return it->second;
+  }
+};
+
+// Whether fragment X (counter-clockwise, number frag) contains the points just
+// left and just right of m on the curve: m + e n + e^2 d and m - e n + e^2 d for
+// an infinitesimal e > 0, d = t - s the curve's direction and n its left normal.
+// The e^2 term settles a fragment side through m across the curve (a split
+// line, which is no curve).
+bool covers(const Fragment& X, int frag, const P2& m, CurveLine& line, bool& left, bool& right) {
+  left = right = true;
+  const auto mi = CGAL::approx(m);
+  const std::size_t n = X.v.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const P3 &p = X.v[k], &q = X.v[(k + 1) % n];
+    CGAL::Sign o = CGAL::ZERO;
+    bool known = false;
+    {
+      CGAL::Protect_FPU_rounding<true> upward;
+      const Interval v = (q.x.approx() - p.x.approx()) * (mi.y() - p.y.approx()) -
+                         (q.y.approx() - p.y.approx()) * (mi.x() - p.x.approx());
+      if (v.inf() > 0) { o = CGAL::POSITIVE; known = true; }
+      else if (v.sup() < 0) { o = CGAL::NEGATIVE; known = true; }
+    }
+    if (!known && !line.side_on_line(frag, k, p, q)) o = CGAL::orientation(p.xy(), q.xy(), m);
+    if (o == CGAL::POSITIVE) continue;
+    if (o == CGAL::NEGATIVE) return left = right = false;
+    // m on this side's line. Its inward normal is (q - p) turned left: against n
+    // it gives (q - p).d, against d the cross product (q - p) x d.
+    const auto across = dot_sign(p, q, line.s, line.t);
+    if (across > 0) right = false;
+    else if (across < 0) left = false;
+    else if (cross_sign(p, q, line.s, line.t) <= 0) return left = right = false;
+    if (!left && !right) return false;
+  }
+  return true;
+}
+
+struct Cover {
+  int frag;          // position in the drawing order
+  int face;
+  bool left, right;
+};
+
+// Fragment T, covering both sides of m, hides the curve there by the spec's rule
+// on its own: another face, and nearer at m (or as near, with a lower index).
+bool in_front(const ScreenScene& ss, const Curve& cv, const Fragment& T, const P2& m) {
+  if (std::binary_search(cv.faces.begin(), cv.faces.end(), T.face)) return false;
+  const auto cmp = CGAL::compare(ss.facets[T.facet].depth_at(m), depth_on(cv, m));
+  return cmp == CGAL::SMALLER || (cmp == CGAL::EQUAL && T.face < cv.order_face);
+}
+
+// Whether a fragment of a face that is not one of cv's covers both sides of m and
+// is painted over the curve there. The curve's own fragment is the last-drawn
+// fragment of its facets beside m: a fragment over the same side drawn after it
+// is in front of it, one drawn before is behind (the order guarantees it; the
+// exact depth at m checks it, and settles equal depth by the spec's face-index
+// rule). Where the curve has no fragment of its own (an edge of edge-on faces
+// only), or for a fragment over the other side, the depths at m decide.
+bool painted_over(const ScreenScene& ss, const std::vector<Fragment>& order, const Curve& cv, const P2& m,
+                  const std::vector<Cover>& cov) {
+  int own = -1;
+  for (int i = 0; i < static_cast<int>(cov.size()); ++i) {
+    const int facet = order[cov[i].frag].facet;
+    if (std::find(cv.sharers.begin(), cv.sharers.end(), facet) == cv.sharers.end()) continue;
+    if (own < 0 || cov[i].frag > cov[own].frag) own = i;
+  }
+  const bool own_left = own >= 0 && cov[own].left;
+  FT zm;
+  bool have_zm = false;
+  for (int i = 0; i < static_cast<int>(cov.size()); ++i) {
+    const int g = cov[i].face;
+    if (std::binary_search(cv.faces.begin(), cv.faces.end(), g)) continue;
+    bool l = false, r = false;   // face g, all its fragments together, covers both sides
+    for (const Cover& c : cov)
+      if (c.face == g) { l |= c.left; r |= c.right; }
+    if (!(l && r)) continue;
+    if (!have_zm) { zm = depth_on(cv, m); have_zm = true; }
+    const auto cmp = CGAL::compare(ss.facets[order[cov[i].frag].facet].depth_at(m), zm);
+    if (cmp == CGAL::EQUAL) {
+      if (g < cv.order_face) return true;
+      continue;
+    }
+    if (own >= 0 && (own_left ? cov[i].left : cov[i].right)) {
+      const bool after = cov[i].frag > cov[own].frag;
+      if (after != (cmp == CGAL::SMALLER))
+        throw std::logic_error("newell: the drawing order contradicts the depths (engine bug)");
+      if (after) return true;
+    } else if (cmp == CGAL::SMALLER) {
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+void add_piercing_lines(ScreenScene& ss, Stats& stats) {
+  std::vector<int> occ;
+  std::vector<CGAL::Bbox_2> boxes;
+  for (int fi = 0; fi < static_cast<int>(ss.facets.size()); ++fi)
+    if (ss.facets[fi].occluder) { occ.push_back(fi); boxes.push_back(ss.facets[fi].box); }
+  std::int64_t tested = 0, found = 0;
+  std::vector<Curve> lines;
+  BoxGrid(boxes).pairs([&](int i, int j) {
+    const int fa = occ[i], fb = occ[j];
+    const Facet &A = ss.facets[fa], &B = ss.facets[fb];
+    if (A.face == B.face) return;
+    ++tested;
+    P3 p, q;
+    if (!piercing_segment(A, B, p, q)) return;
+    ++found;
+    Curve c;
+    c.s = p;
+    c.t = q;
+    c.sharers = {fa, fb};
+    c.faces = {std::min(A.face, B.face), std::max(A.face, B.face)};
+    c.kind = EdgeKind::Intersection;
+    c.drawn = true;
+    c.order_face = c.faces[0];
+    c.box = box_of({p, q});
+    lines.push_back(std::move(c));
+  });
+  for (auto& c : lines) ss.curves.push_back(std::move(c));
+  stats.count("facet_pairs_tested", tested);
+  stats.count("intersection_lines", found);
+}
+
+void drop_painted_over(ScreenScene& ss, const std::vector<Fragment>& order, Stats& stats) {
+  std::vector<CGAL::Bbox_2> boxes;
+  boxes.reserve(order.size());
+  for (const Fragment& f : order) boxes.push_back(f.box);
+  const BoxGrid grid(boxes);
+  auto covered = [&](const Curve& cv) {
+    bool found = false;
+    grid.overlapping(cv.box, [&](int i) {
+      const Fragment& G = order[i];
+      const CGAL::Bbox_2& b = G.box;
+      if (found || !(b.xmin() <= cv.box.xmin() && cv.box.xmax() <= b.xmax() && b.ymin() <= cv.box.ymin() &&
+                     cv.box.ymax() <= b.ymax()))
+        return;
+      if (std::binary_search(cv.faces.begin(), cv.faces.end(), G.face) ||
+          std::find(cv.sharers.begin(), cv.sharers.end(), G.facet) != cv.sharers.end())
+        return;
+      const Facet& F = ss.facets[G.facet];
+      for (const P3* e : {&cv.s, &cv.t}) {
+        for (std::size_t k = 0; k < G.v.size(); ++k)
+          if (orient(G.v[k], G.v[(k + 1) % G.v.size()], *e) != CGAL::POSITIVE) return;
+        if (plane_side(*e, F) != CGAL::POSITIVE) return;   // the curve's end strictly behind G
+      }
+      found = true;
+    });
+    return found;
+  };
+  const std::size_t before = ss.curves.size();
+  ss.curves.erase(std::remove_if(ss.curves.begin(), ss.curves.end(), covered), ss.curves.end());
+  stats.count("curves_painted_over", static_cast<std::int64_t>(before - ss.curves.size()));
+}
+
+std::vector<std::vector<Cut>> cut_at_crossings(const ScreenScene& ss, Stats& stats) {
+  std::vector<std::vector<Cut>> cuts(ss.curves.size());
+  std::vector<CGAL::Bbox_2> boxes;
+  boxes.reserve(ss.curves.size());
+  for (const Curve& c : ss.curves) boxes.push_back(c.box);
+  Cutter cutter{ss, cuts};
+  BoxGrid(boxes).pairs([&](int i, int j) { cutter.pair(i, j); });
+  stats.count("edge_pairs_tested", cutter.pairs);
+  stats.count("intersections", cutter.crossings);
+
+  // A line none of whose facets hides anything (an edge of faces seen edge-on)
+  // can pass through another face's plane inside it with no intersection line
+  // ending there (those are drawn only between occluding facets): where it
+  // pierces an occluding facet, its visibility changes, so it is cut there too.
+  std::vector<int> occ;
+  std::vector<CGAL::Bbox_2> facet_boxes;
+  for (int fi = 0; fi < static_cast<int>(ss.facets.size()); ++fi)
+    if (ss.facets[fi].occluder) { occ.push_back(fi); facet_boxes.push_back(ss.facets[fi].box); }
+  const BoxGrid facets(facet_boxes);
+  std::int64_t piercings = 0;
+  for (int ci = 0; ci < static_cast<int>(ss.curves.size()); ++ci) {
+    const Curve& cv = ss.curves[ci];
+    if (std::any_of(cv.sharers.begin(), cv.sharers.end(), [&](int f) { return ss.facets[f].occluder; })) continue;
+    facets.overlapping(cv.box, [&](int i) {
+      const Facet& G = ss.facets[occ[i]];
+      if (plane_side(cv.s, G) * plane_side(cv.t, G) >= 0) return;   // not strictly through G's plane
+      const FT hs = cv.s.z - G.depth_at(cv.s.xy()), ht = cv.t.z - G.depth_at(cv.t.xy());
+      const P2 x = cv.s.xy() + (hs / (hs - ht)) * (cv.t.xy() - cv.s.xy());
+      const int turn = G.facing == Facing::Front ? 1 : -1;
+      for (std::size_t k = 0; k < G.v.size(); ++k)
+        if (CGAL::orientation(G.v[k].xy(), G.v[(k + 1) % G.v.size()].xy(), x) * turn <= 0) return;
+      cuts[ci].push_back(Cut{x, false});
+      ++piercings;
+    });
+  }
+  stats.count("piercings", piercings);
+  return cuts;
+}
+
+std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Fragment>& order,
+                                   std::vector<std::vector<Cut>>& cuts, Stats& stats) {
+  std::vector<CGAL::Bbox_2> boxes;
+  boxes.reserve(order.size());
+  for (const Fragment& f : order) boxes.push_back(f.box);
+  const BoxGrid grid(boxes);
+  std::vector<MapPiece> out;
+  std::vector<Cover> cov;
+  std::vector<int> cand;
+  std::int64_t pieces = 0, visible = 0;
+  for (int ci = 0; ci < static_cast<int>(ss.curves.size()); ++ci) {
+    const Curve& cv = ss.curves[ci];
+    const P2 s = cv.s.xy(), t = cv.t.xy();
+    CurveLine line{cv.s, cv.t, {}};
+    // Sort the cuts along the curve (by its dominant coordinate); a point cut
+    // twice is one cut, a depth crossing if either was.
+    std::vector<Cut>& pts = cuts[ci];
+    const bool use_x = CGAL::compare(CGAL::abs(cv.t.x - cv.s.x), CGAL::abs(cv.t.y - cv.s.y)) != CGAL::SMALLER;
+    const auto forward = use_x ? CGAL::compare_x(s, t) : CGAL::compare_y(s, t);
+    std::sort(pts.begin(), pts.end(), [&](const Cut& a, const Cut& b) {
+      return (use_x ? CGAL::compare_x(a.p, b.p) : CGAL::compare_y(a.p, b.p)) == forward;
+    });
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      // On one line, equal along the dominant axis is the same point.
+      const bool same = kept > 0 && (use_x ? CGAL::compare_x(pts[kept - 1].p, pts[k].p)
+                                           : CGAL::compare_y(pts[kept - 1].p, pts[k].p)) == CGAL::EQUAL;
+      if (same) pts[kept - 1].depth_crossing |= pts[k].depth_crossing;
+      else pts[kept++] = pts[k];
+    }
+    pts.resize(kept);
+    pts.insert(pts.begin(), Cut{s, true});
+    pts.push_back(Cut{t, true});
+    bool extend = false;   // out.back() is this curve's previous piece
+    const std::size_t first = out.size();
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+      ++pieces;
+      const P2 m = CGAL::midpoint(pts[k].p, pts[k + 1].p);
+      // The fragments near m, last drawn first: the first covering each side is
+      // what is painted there. Usually one fragment covers both sides and lies
+      // in front of the curve, which settles the piece (hidden, one face on both
+      // sides); otherwise every fragment around m is looked at.
+      cand.clear();
+      grid.overlapping(box_of_point(m), [&](int i) { cand.push_back(i); });
+      std::sort(cand.begin(), cand.end(), std::greater<int>());
+      cov.clear();
+      int top_left = -1, top_right = -1;
+      std::size_t next = 0;
+      auto scan = [&](bool until_both) {
+        for (; next < cand.size(); ++next) {
+          const int i = cand[next];
+          bool l, r;
+          if (!covers(order[i], i, m, line, l, r)) continue;
+          cov.push_back(Cover{i, order[i].face, l, r});
+          if (l && top_left < 0) top_left = i;
+          if (r && top_right < 0) top_right = i;
+          if (until_both && top_left >= 0 && top_right >= 0) { ++next; return; }
+        }
+      };
+      scan(true);
+      const int left = top_left < 0 ? -1 : order[top_left].face;
+      const int right = top_right < 0 ? -1 : order[top_right].face;
+      bool drawn = false;
+      if (cv.drawn) {
+        if (top_left >= 0 && top_left == top_right && in_front(ss, cv, order[top_left], m)) {
+          drawn = false;
+        } else {
+          scan(false);
+          drawn = !painted_over(ss, order, cv, m, cov);
+        }
+      }
+      visible += drawn;
+      if (!drawn && left == right) { extend = false; continue; }
+      // The same as the piece before and no depth crossing between: one piece.
+      if (extend && !pts[k].depth_crossing && out.back().drawn == drawn && out.back().left == left &&
+          out.back().right == right) {
+        out.back().b = pts[k + 1].p;
+        continue;
+      }
+      MapPiece mp;
+      mp.a = pts[k].p;
+      mp.b = pts[k + 1].p;
+      mp.left = left;
+      mp.right = right;
+      mp.drawn = drawn;
+      mp.kind = cv.kind;
+      mp.faces = &cv.faces;
+      mp.order_face = cv.order_face;
+      out.push_back(std::move(mp));
+      extend = true;
+    }
+    for (std::size_t k = first; k < out.size(); ++k) {   // depths at the ends, for coincident lines
+      out[k].za = depth_on(cv, out[k].a);
+      out[k].zb = depth_on(cv, out[k].b);
+    }
+  }
+  stats.count("pieces", pieces);
+  stats.count("visible_pieces", visible);
+  stats.count("map_pieces", static_cast<std::int64_t>(out.size()));
+  return out;
+}
+
+}  // namespace vismap::engine

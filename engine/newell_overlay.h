@@ -1,0 +1,46 @@
+// Newell's ordered fragments -> the pieces of the visibility map. Every line that
+// may be drawn or bound a region (edges, near-plane cuts, and the intersection
+// lines of faces that pierce each other) is cut wherever anything on it can
+// change, and each piece is classified at its midpoint by the drawing order:
+// what is painted just beside it, and whether a later fragment paints over it.
+// Internal to the engine.
+#pragma once
+#include <vector>
+
+#include "arrangements/map_builder.h"
+#include "engine/newell_order.h"
+
+namespace vismap::engine {
+
+// Faces that pierce each other: appends to ss.curves, for every two occluding
+// facets of different faces whose planes cross inside both projections, the
+// segment where they cross (the overlap of the two chords the crossing line
+// cuts from them).
+void add_piercing_lines(ScreenScene& ss, Stats& stats);
+
+// Drops the curves that one fragment covers whole and lies strictly in front of
+// (both ends strictly inside its projection, strictly behind its plane): they
+// are hidden, and bound nothing (the same fragment's face is on both sides).
+void drop_painted_over(ScreenScene& ss, const std::vector<Fragment>& order, Stats& stats);
+
+// Where each curve must be cut: every point where another curve crosses it or
+// ends on it, the ends of a collinear overlap, where two collinear curves'
+// depths cross, and where a line of edge-on faces only pierces an occluding
+// facet (no intersection line ends there). Unsorted, possibly repeated.
+struct Cut {
+  P2 p;
+  bool depth_crossing = false;   // where two collinear curves' depths cross: pieces never merge here
+};
+std::vector<std::vector<Cut>> cut_at_crossings(const ScreenScene& ss, Stats& stats);
+
+// Each piece between consecutive cuts, judged at its midpoint m from `order`
+// (drawing order): the face on each side is the last-drawn fragment covering the
+// points just beside m; a drawn curve is hidden where a fragment of a face not
+// its own covers both sides of m and is painted over it (drawn after its own
+// fragment; at exactly equal depth, the spec's face-index rule). Keeps the
+// visible pieces and those with different faces on their two sides, joining
+// consecutive pieces of one curve judged alike (except at depth crossings).
+std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Fragment>& order,
+                                   std::vector<std::vector<Cut>>& cuts, Stats& stats);
+
+}  // namespace vismap::engine

@@ -1,0 +1,162 @@
+#include "tests/fuzz/fuzz_harness.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <stdexcept>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "arrangements/json_writer.h"
+#include "verify/checker.h"
+
+namespace vismap_fuzz {
+namespace {
+
+[[noreturn]] void die(const std::string& why) {
+  std::fprintf(stderr, "\n*** vismap fuzz finding: %s\n", why.c_str());
+  std::fflush(stderr);
+  std::abort();
+}
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+std::string vec(const vismap::Vec3& v) { return num(v.x) + "," + num(v.y) + "," + num(v.z); }
+
+// Reads bytes in order; zeros once they run out, so that every input decodes.
+class Bytes {
+ public:
+  Bytes(const std::uint8_t* d, std::size_t n) : d_(d), n_(n) {}
+  unsigned next() { return i_ < n_ ? d_[i_++] : 0u; }
+  bool done() const { return i_ >= n_; }
+
+ private:
+  const std::uint8_t* d_;
+  std::size_t n_, i_ = 0;
+};
+
+// Coordinates: small integers and halves, so that degeneracies are common.
+constexpr double kCoord[] = {0, 1, 2, 3, -1, 0.5, 1.5, 4};
+constexpr double kDepth[] = {0, 1, 2, -1, 0.5, 3, 1, 0};
+
+const vismap::Vec3 kDirs[] = {{0, 0, -1}, {-1, -1, -1}, {1, -2, -4}, {0, -1, -1},
+                              {-1, 0, 0}, {-1, -2, -1.5}, {0, 1, -1}, {2, 1, -3}};
+const vismap::Vec3 kEyes[] = {{1.5, 1.5, 6}, {5, -4, 4}, {1, 1, 1.5}, {-2, 5, 3},
+                              {2, 2, 0.5}, {0.5, -3, 1}, {8, 8, 8}, {1, 1, 0}};
+const vismap::Vec3 kTargets[] = {{1, 1, 0}, {0, 0, 0}, {1.5, 1.5, 1}, {2, 2, 2}};
+const double kFovs[] = {40, 60, 90, 120};
+const double kCreases[] = {30, 0, 89, 180};
+
+}  // namespace
+
+TinyCase decode_tiny(const std::uint8_t* data, std::size_t size) {
+  Bytes b(data, size);
+  TinyCase t;
+  t.scene.file = "fuzz.off";
+
+  // Camera and lines.
+  const unsigned cam = b.next();
+  std::ostringstream args;
+  if ((cam & 1u) == 0) {
+    t.camera.dir = kDirs[(cam >> 1) & 7u];
+    args << "--dir " << vec(*t.camera.dir);
+  } else {
+    t.camera.eye = kEyes[(cam >> 1) & 7u];
+    t.camera.target = kTargets[(cam >> 4) & 3u];
+    t.camera.fov_deg = kFovs[(cam >> 6) & 3u];
+    args << "--eye " << vec(*t.camera.eye) << " --target " << vec(*t.camera.target) << " --fov "
+         << num(*t.camera.fov_deg);
+  }
+  const unsigned lines = b.next();
+  t.options.crease_deg = kCreases[lines & 3u];
+  t.options.smooth = (lines & 4u) != 0;
+  if (t.options.crease_deg != 30) args << " --crease " << num(t.options.crease_deg);
+  if (t.options.smooth) args << " --smooth";
+  t.args = args.str();
+
+  // Vertex pool: up to 16 vertices, each coordinate from a small set.
+  const unsigned nv = 3 + b.next() % 14;
+  for (unsigned i = 0; i < nv; ++i) {
+    const unsigned xy = b.next(), z = b.next();
+    t.scene.vertices.push_back({kCoord[xy & 7u], kCoord[(xy >> 3) & 7u], kDepth[z & 7u] + ((z >> 3) & 1u ? 0.25 : 0)});
+  }
+  // Faces: up to 12, 3 to 5 corners each, corners from the pool.
+  const unsigned nf = 1 + b.next() % 12;
+  for (unsigned f = 0; f < nf && !b.done(); ++f) {
+    const unsigned k = 3 + b.next() % 3;
+    std::vector<std::uint32_t> face;
+    for (unsigned c = 0; c < k; ++c) face.push_back(b.next() % nv);
+    t.scene.faces.push_back(face);
+  }
+  if (t.scene.faces.empty()) t.scene.faces.push_back({0, 1, 2});
+  return t;
+}
+
+std::string to_off(const vismap::Scene& scene) {
+  std::string s = "OFF\n" + std::to_string(scene.vertices.size()) + " " + std::to_string(scene.faces.size()) + " 0\n";
+  for (const vismap::Vec3& v : scene.vertices) s += num(v.x) + " " + num(v.y) + " " + num(v.z) + "\n";
+  for (const auto& f : scene.faces) {
+    s += std::to_string(f.size());
+    for (std::uint32_t i : f) s += " " + std::to_string(i);
+    s += "\n";
+  }
+  return s;
+}
+
+Engines engines_from_env() {
+  const char* e = std::getenv("VISMAP_FUZZ_ENGINE");
+  const std::string w = e ? e : "franklin";
+  return w == "both" ? Engines::Both : w == "newell" ? Engines::Newell : Engines::Franklin;
+}
+
+void check_pipeline(const std::uint8_t* data, std::size_t size, Engines engines) {
+  TinyCase t = decode_tiny(data, size);
+  vismap::View view;
+  try {
+    view = vismap::make_view(t.camera, t.scene);
+  } catch (const std::invalid_argument&) {
+    return;  // an impossible camera (eye on the target): refused, as the CLI does
+  }
+  const std::string which = engines == Engines::Both ? "both" : engines == Engines::Newell ? "newell" : "franklin";
+  std::vector<std::pair<std::string, std::string>> maps;   // (engine, JSON)
+  for (const char* engine : {"franklin", "newell"}) {
+    if (which != "both" && which != engine) continue;
+    const bool newell = std::string(engine) == "newell";
+    const std::string algo = newell ? " --algorithm newell" : "";
+    const std::string repro = "\n--- scene (fuzz.off) ---\n" + to_off(t.scene) + "--- command ---\nvismap fuzz.off " +
+                              t.args + algo + " --json map.json && vismap verify fuzz.off map.json" +
+                              (t.options.smooth ? " --smooth" : "") +
+                              (t.options.crease_deg != 30 ? " --crease " + num(t.options.crease_deg) : "") + "\n";
+    std::string json;
+    try {
+      vismap::VisibilityMap map = newell ? vismap::visibility_newell(t.scene, view, t.options)
+                                         : vismap::visibility_franklin(t.scene, view, t.options);
+      map.stats = {};
+      json = vismap::to_json(map);
+    } catch (const std::exception& e) {
+      die(std::string("the ") + engine + " engine threw: " + e.what() + repro);
+    }
+    vismap_check::Options opt;
+    opt.samples = 150;
+    opt.crease_deg = t.options.crease_deg;
+    opt.smooth = t.options.smooth;
+    const vismap_check::Report rep = vismap_check::check_map(t.scene, json, opt);
+    if (!rep.ok) {
+      std::string why = std::string("the checker rejects the ") + engine + " engine's map:\n";
+      for (const std::string& f : rep.failures) why += "  " + f + "\n";
+      die(why + repro);
+    }
+    maps.emplace_back(engine, json);
+  }
+  if (maps.size() == 2 && maps[0].second != maps[1].second)
+    die("the two engines' maps differ (both accepted by the checker)\n--- scene (fuzz.off) ---\n" + to_off(t.scene) +
+        "--- options ---\n" + t.args + "\n");
+}
+
+}  // namespace vismap_fuzz

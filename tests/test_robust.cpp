@@ -1,0 +1,431 @@
+// Robustness of the command line, measured from outside as a user meets it:
+// malformed input of every kind is refused quickly and cheaply with a message
+// naming the file, status 1 or 2, and no output file; scenes too big for the
+// memory limit are refused up front; standard input works; outputs are atomic
+// (a failed, killed or interrupted run leaves the old file and no temporary).
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "arrangements/atomic_file.h"
+#include "engine/scene.h"
+#include "tests/run_child.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using vismap_test::Result;
+using vismap_test::TempDir;
+
+const std::string kBin = VISMAP_BIN;
+const fs::path kData = VISMAP_DATA_DIR;
+
+std::string both(const Result& r) { return "stdout:\n" + r.out.substr(0, 2000) + "\nstderr:\n" + r.err; }
+
+// ---- building malformed files -----------------------------------------------------------
+
+template <class T>
+void put(std::string& s, T v) {
+  char b[sizeof(T)];
+  std::memcpy(b, &v, sizeof(T));  // little-endian machine (x86-64, arm64)
+  s.append(b, sizeof(T));
+}
+
+std::string binary_stl(std::uint32_t count, int triangles, float poison = 0) {
+  std::string s(80, '\0');
+  put(s, count);
+  for (int t = 0; t < triangles; ++t) {
+    for (int k = 0; k < 12; ++k) put(s, k == 7 ? poison : static_cast<float>(k % 3));
+    put(s, std::uint16_t{0});
+  }
+  return s;
+}
+
+std::string garbage(std::size_t n, std::uint64_t seed) {
+  std::string s;
+  for (std::size_t i = 0; i < n; ++i) {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    s += static_cast<char>(seed >> 56);
+  }
+  return s;
+}
+
+const std::string kOff = "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 1\n3 0 1 2\n3 0 2 3\n";
+const std::string kObj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 1\nf 1 2 3\nf 1 3 4\n";
+const std::string kStl =
+    "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nendloop\nendfacet\n"
+    "endsolid t\n";
+const std::string kPlyHead =
+    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+    "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+const std::string kPly = kPlyHead + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+
+struct Bad {
+  std::string name;   // file name, its extension choosing the reader
+  std::string bytes;
+};
+
+std::vector<Bad> malformed() {
+  std::vector<Bad> v = {
+      {"empty.off", ""}, {"empty.obj", ""}, {"empty.stl", ""}, {"empty.ply", ""},
+      {"garbage.off", garbage(4096, 1)}, {"garbage.obj", garbage(4096, 2)},
+      {"garbage.stl", garbage(4096, 3)}, {"garbage.ply", garbage(4096, 4)},
+      {"garbage_big.stl", garbage(1 << 20, 5)},
+      {"truncated.off", kOff.substr(0, kOff.size() / 2)},
+      {"truncated.stl", kStl.substr(0, kStl.size() / 2)},
+      {"truncated.ply", kPly.substr(0, kPly.size() - 4)},
+      {"truncated_binary.stl", binary_stl(2, 2).substr(0, 120)},
+      {"nan.off", "OFF\n3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n"},
+      {"inf.off", "OFF\n3 1 0\n0 0 0\n1 inf 0\n0 1 0\n3 0 1 2\n"},
+      {"overflow.obj", "v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n"},
+      {"nan.obj", "v 0 0 0\nv -nan 0 0\nv 0 1 0\nf 1 2 3\n"},
+      {"nan.stl", "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 nan\nvertex 1 0 0\nvertex 1 1 0\n"
+                  "endloop\nendfacet\nendsolid t\n"},
+      {"nan_binary.stl", binary_stl(1, 1, std::numeric_limits<float>::quiet_NaN())},
+      {"inf_binary.stl", binary_stl(1, 1, std::numeric_limits<float>::infinity())},
+      {"nan.ply", kPlyHead + "0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n"},
+      {"index_range.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"},
+      {"index_negative.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n"},
+      {"index_range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n"},
+      {"index_negative.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4\n"},
+      {"index_zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"},
+      {"index_huge.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999\n"},
+      {"index_range.ply", kPlyHead + "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"},
+      {"index_negative.ply", kPlyHead + "0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n"},
+      {"absurd_faces.off", "OFF\n3 1000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"},
+      {"absurd_both.off", "OFF\n18446744073709551615 18446744073709551615 0\n"},
+      {"absurd_corners.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4000000000 0 1 2\n"},
+      {"absurd_count.stl", binary_stl(0xFFFFFFFFu, 1)},
+      {"absurd_count.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000000\nproperty float x\n"
+                           "property float y\nproperty float z\nend_header\n" + std::string(12, '\0')},
+      {"absurd_list.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+                          "property float y\nproperty float z\nelement face 1\nproperty list uint int vertex_indices\n"
+                          "end_header\n" + std::string(36, '\0') + "\xff\xff\xff\xff"},
+      {"unknown.txt", kOff},
+      {"no_extension", kOff},
+  };
+  return v;
+}
+
+// ---- malformed files through the command line -----------------------------------------------
+
+// Each is refused with status 1 or 2 and a message naming it, writes nothing,
+// and costs at most a few seconds of CPU and a few hundred MiB.
+void expect_refused(const std::string& input, const std::string& name_in_message, const TempDir& out,
+                    const TempDir& scratch, const std::string& stdin_file = "") {
+  vismap_test::Limits lim;
+  lim.address_space = 4ull << 30;   // what the program may reserve; the peak is checked below
+  lim.cpu_seconds = 20;
+  lim.kill_after_seconds = 60;
+  const Result r = vismap_test::run({kBin, input, "--json", out.file("out.json"), "-o", out.file("out.svg")},
+                                    scratch.path(), stdin_file, lim);
+  EXPECT_TRUE(r.exited) << input << " died of signal " << r.status << "\n" << both(r);
+  EXPECT_TRUE(r.status == 1 || r.status == 2) << input << ": status " << r.status << "\n" << both(r);
+  EXPECT_NE(r.err.find("vismap: " + name_in_message), std::string::npos) << input << "\n" << both(r);
+  EXPECT_TRUE(out.names().empty()) << input << " left " << out.names().front();
+  for (const std::string& n : out.names()) fs::remove_all(out.path() / n);  // keep the cases independent
+  EXPECT_LT(r.cpu_seconds, 5.0) << input;
+  EXPECT_LT(r.max_rss, (vismap_test::kAsan ? 1024ull : 300ull) << 20) << input;
+}
+
+TEST(Malformed, EveryFileIsRefusedQuicklyNamingItAndWritingNothing) {
+  TempDir in("robust_in"), out("robust_out"), scratch("robust_scratch");
+  for (const Bad& b : malformed()) {
+    SCOPED_TRACE(b.name);
+    expect_refused(in.write(b.name, b.bytes), in.file(b.name), out, scratch);
+  }
+  fs::create_directory(in.path() / "folder.off");
+  expect_refused(in.file("folder.off"), in.file("folder.off"), out, scratch);
+  expect_refused(in.file("missing.off"), in.file("missing.off"), out, scratch);
+  // Standard input: garbage and nothing at all.
+  expect_refused("-", "<stdin>", out, scratch, in.write("stdin.bin", garbage(1000, 9)));
+  expect_refused("-", "<stdin>", out, scratch, in.write("stdin.empty", ""));
+}
+
+TEST(Malformed, BadUsageIsStatusTwoAndWritesNothing) {
+  TempDir in("robust_usage_in"), out("robust_usage_out"), scratch("robust_usage_scratch");
+  const std::string scene = in.write("ok.off", kOff);
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{}, {scene, "--bogus"}, {scene, "--dir", "0,0"}, {scene, "--dir", "nan,0,1"},
+        {scene, "--dir", "0,0,0"}, {scene, "--fov", "180", "--eye", "1,1,1"}, {scene, "--json"},
+        {scene, "--format", "gltf"}, {scene, "--max-memory", "0"}, {scene, "--max-memory", "-5G"},
+        {scene, "--max-memory", "8Q"}, {scene, scene}}) {
+    std::vector<std::string> argv = {kBin};
+    argv.insert(argv.end(), args.begin(), args.end());
+    argv.insert(argv.end(), {"-o", out.file("out.svg")});
+    const Result r = vismap_test::run(argv, scratch.path());
+    EXPECT_EQ(r.status, 2) << (args.empty() ? "" : args.back()) << "\n" << both(r);
+    EXPECT_EQ(r.err.rfind("vismap: ", 0), 0u) << both(r);
+    EXPECT_TRUE(out.names().empty());
+  }
+}
+
+// ---- memory limits -------------------------------------------------------------------------
+
+TEST(Limits, AHeaderClaimingABillionFacesIsRefusedUpFront) {
+  TempDir in("limits_in"), out("limits_out"), scratch("limits_scratch");
+  const std::string huge = in.write("huge.off", "OFF\n3 1000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  const Result r = vismap_test::run({kBin, huge, "--max-memory", "8G", "--json", out.file("m.json")}, scratch.path());
+  EXPECT_EQ(r.status, 1) << both(r);
+  // The size it would need and the limit, both in the message.
+  EXPECT_NE(r.err.find(huge + ":2: the header's 3 vertices and 1000000000 faces would need about "),
+            std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(" TiB of memory, more than the limit of 8.0 GiB (set with --max-memory)"), std::string::npos)
+      << r.err;
+  EXPECT_LT(r.cpu_seconds, 1.0);
+  EXPECT_TRUE(out.names().empty());
+}
+
+TEST(Limits, TheMemoryLimitAppliesToEveryFormatAndToTheFileSize) {
+  TempDir in("limits2_in"), out("limits2_out"), scratch("limits2_scratch");
+  auto refused = [&](const std::string& file, const std::string& limit, const std::string& text) {
+    const Result r = vismap_test::run({kBin, file, "--max-memory", limit, "--json", out.file("m.json")},
+                                      scratch.path());
+    EXPECT_EQ(r.status, 1) << file << "\n" << both(r);
+    EXPECT_NE(r.err.find(file + ":"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(text), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--max-memory"), std::string::npos) << r.err;
+    EXPECT_TRUE(out.names().empty());
+  };
+  // A small scene fits in the default limit and in 1G, not in 1M (the engine's base need).
+  const std::string off = in.write("ok.off", kOff);
+  EXPECT_EQ(vismap_test::run({kBin, off, "--max-memory", "1G", "--json", out.file("m.json")}, scratch.path()).status, 0);
+  fs::remove(out.file("m.json"));
+  refused(off, "1M", "more than the limit of 1.0 MiB");
+  refused(in.write("ok.obj", kObj), "1M", "more than the limit of 1.0 MiB");
+  refused(in.write("ok.stl", kStl), "1M", "more than the limit of 1.0 MiB");
+  refused(in.write("ok.ply", kPly), "1M", "more than the limit of 1.0 MiB");
+  refused(in.write("b.stl", binary_stl(1, 1)), "1M", "more than the limit of 1.0 MiB");
+  // A file bigger than the limit is not even read.
+  refused(in.write("big.off", kOff + std::string(3 << 20, '#')), "2M", "more than the memory limit of 2.0 MiB");
+}
+
+TEST(Limits, SizesParseAndPrint) {
+  std::uint64_t b = 0;
+  EXPECT_TRUE(vismap::parse_memory_size("8G", b));
+  EXPECT_EQ(b, 8ull << 30);
+  EXPECT_TRUE(vismap::parse_memory_size("512MiB", b));
+  EXPECT_EQ(b, 512ull << 20);
+  EXPECT_TRUE(vismap::parse_memory_size("1.5g", b));
+  EXPECT_EQ(b, 3ull << 29);
+  EXPECT_TRUE(vismap::parse_memory_size("4096", b));
+  EXPECT_EQ(b, 4096u);
+  EXPECT_TRUE(vismap::parse_memory_size("64KB", b));
+  EXPECT_EQ(b, 64u << 10);
+  for (const char* bad : {"", "G", "0", "-1G", "8Q", "8GG", "1e3", " 8G", "99999999999T"})
+    EXPECT_FALSE(vismap::parse_memory_size(bad, b)) << bad;
+  EXPECT_EQ(vismap::format_bytes(812), "812 bytes");
+  EXPECT_EQ(vismap::format_bytes(8ull << 30), "8.0 GiB");
+  EXPECT_EQ(vismap::format_bytes(300ull << 20), "300 MiB");
+  EXPECT_GT(vismap::default_max_memory(), 64ull << 20);
+  // The estimate saturates instead of overflowing on absurd counts.
+  EXPECT_EQ(vismap::estimate_memory(0, ~0ull, ~0ull, ~0ull), ~0ull);
+  EXPECT_LT(vismap::estimate_memory(1000, 4, 2, 6), 100ull << 20);
+}
+
+// ---- standard input ----------------------------------------------------------------------------
+
+TEST(Stdin, SceneFromStandardInputByContentOrFormat) {
+  TempDir in("stdin_in"), scratch("stdin_scratch");
+  const std::string file = in.write("s.off", kOff);
+  const Result from_file = vismap_test::run({kBin, file, "--dir", "0,0,-1", "--json", "-"}, scratch.path());
+  ASSERT_EQ(from_file.status, 0) << both(from_file);
+  Result r = vismap_test::run({kBin, "-", "--dir", "0,0,-1", "--json", "-"}, scratch.path(), file);
+  ASSERT_EQ(r.status, 0) << both(r);
+  // The same map; only the scene's name differs.
+  std::string expected = from_file.out;
+  expected.replace(expected.find(file), file.size(), "<stdin>");
+  EXPECT_EQ(r.out, expected);
+
+  const std::string obj = in.write("s.obj", kObj), stl = in.write("s.stl", kStl), ply = in.write("s.ply", kPly);
+  for (const std::string& f : {obj, stl, ply}) {
+    r = vismap_test::run({kBin, "-", "--dir", "0,0,-1", "--json", "-"}, scratch.path(), f);
+    EXPECT_EQ(r.status, 0) << f << "\n" << both(r);
+    EXPECT_NE(r.out.find("\"file\":\"<stdin>\""), std::string::npos);
+  }
+  r = vismap_test::run({kBin, "-", "--dir", "0,0,-1", "--json", "-"}, scratch.path(), in.write("b.stl", binary_stl(1, 1)));
+  EXPECT_EQ(r.status, 0) << both(r);
+  // --format names it when the content cannot: OBJ with only a polygon record first.
+  const std::string odd = in.write("odd", "# made by hand\nvertex_colors off\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  r = vismap_test::run({kBin, "-", "--json", "-"}, scratch.path(), odd);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("<stdin>: cannot tell the mesh format"), std::string::npos) << r.err;
+  r = vismap_test::run({kBin, "-", "--format", "obj", "--json", "-"}, scratch.path(), odd);
+  EXPECT_EQ(r.status, 0) << both(r);
+  // --format also overrides a file's extension.
+  r = vismap_test::run({kBin, odd, "--format", "obj", "--json", "-"}, scratch.path());
+  EXPECT_EQ(r.status, 0) << both(r);
+  r = vismap_test::run({kBin, file, "--format", "ply", "--json", "-"}, scratch.path());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find(file + ":1: not a PLY file"), std::string::npos) << r.err;
+}
+
+TEST(Stdin, SniffFormat) {
+  EXPECT_EQ(vismap::sniff_format("OFF\n0 0 0\n"), "off");
+  EXPECT_EQ(vismap::sniff_format("# comment\n\n  OFF 3 1 0\n"), "off");
+  EXPECT_EQ(vismap::sniff_format("ply\r\nformat ascii 1.0\n"), "ply");
+  EXPECT_EQ(vismap::sniff_format("solid x\n"), "stl");
+  EXPECT_EQ(vismap::sniff_format(binary_stl(1, 1)), "stl");
+  EXPECT_EQ(vismap::sniff_format("# blender\nmtllib a.mtl\no Cube\nv 1 1 1\n"), "obj");
+  EXPECT_EQ(vismap::sniff_format("v 1 1 1\n"), "obj");
+  EXPECT_EQ(vismap::sniff_format(""), "");
+  EXPECT_EQ(vismap::sniff_format("hello world"), "");
+  EXPECT_EQ(vismap::sniff_format("OFFICE\n"), "");
+}
+
+// ---- atomic output -------------------------------------------------------------------------------
+
+std::string big_scene(int squares) {
+  // Random unit-ish squares at random heights: a few seconds of work.
+  std::string s = "OFF\n" + std::to_string(4 * squares) + " " + std::to_string(squares) + " 0\n";
+  std::uint64_t seed = 7;
+  auto rnd = [&] {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(seed >> 11) / 9007199254740992.0;
+  };
+  const double side = std::sqrt(3.0 / squares);
+  for (int i = 0; i < squares; ++i) {
+    const double x = rnd(), y = rnd(), z = rnd();
+    for (auto [dx, dy] : {std::pair{0.0, 0.0}, {side, 0.0}, {side, side}, {0.0, side}})
+      s += std::to_string(x + dx) + " " + std::to_string(y + dy) + " " + std::to_string(z) + "\n";
+  }
+  for (int i = 0; i < squares; ++i)
+    s += "4 " + std::to_string(4 * i) + " " + std::to_string(4 * i + 1) + " " + std::to_string(4 * i + 2) + " " +
+         std::to_string(4 * i + 3) + "\n";
+  return s;
+}
+
+TEST(Atomic, AFailedRunLeavesTheOldFilesAndNoTemporary) {
+  TempDir in("atomic_in"), out("atomic_out"), scratch("atomic_scratch");
+  const std::string json = out.write("map.json", "old json"), svg = out.write("map.svg", "old svg");
+  const std::string good = in.write("ok.off", kOff), bad = in.write("bad.off", "OFF\n3 1 0\n0 0 0\n");
+  // Bad input.
+  Result r = vismap_test::run({kBin, bad, "--json", json, "-o", svg}, scratch.path());
+  EXPECT_EQ(r.status, 1);
+  // One output that cannot be written: neither is replaced.
+  r = vismap_test::run({kBin, good, "--json", json, "-o", (out.path() / "no" / "such" / "dir.svg").string()},
+                       scratch.path());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("no/such/dir.svg: cannot write"), std::string::npos) << r.err;
+  r = vismap_test::run({kBin, good, "--json", json, "-o", out.path().string()}, scratch.path());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find(out.path().string() + ": cannot write: is a directory"), std::string::npos) << r.err;
+  EXPECT_EQ(vismap_test::slurp(json), "old json");
+  EXPECT_EQ(vismap_test::slurp(svg), "old svg");
+  EXPECT_EQ(out.names(), (std::vector<std::string>{"map.json", "map.svg"}));
+  // A good run replaces both, with the usual permissions.
+  r = vismap_test::run({kBin, good, "--json", json, "-o", svg}, scratch.path());
+  EXPECT_EQ(r.status, 0) << both(r);
+  EXPECT_EQ(vismap_test::slurp(json).rfind("{\"format\":\"vismap\"", 0), 0u);
+  EXPECT_EQ(vismap_test::slurp(svg).rfind("<svg", 0), 0u);
+  EXPECT_EQ(out.names(), (std::vector<std::string>{"map.json", "map.svg"}));
+  struct stat st{};
+  ASSERT_EQ(::stat(json.c_str(), &st), 0);
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  EXPECT_EQ(st.st_mode & 0777, 0666 & ~mask);
+}
+
+// A process killed while its temporary exists removes it, and leaves the old file.
+TEST(Atomic, ASignalDuringTheWriteRemovesTheTemporary) {
+  for (int sig : {SIGTERM, SIGINT, SIGHUP}) {
+    TempDir out("atomic_signal");
+    const std::string path = out.write("map.json", "old");
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      vismap::install_output_cleanup_handlers();
+      vismap::AtomicFile f(path);
+      f.write("new, half written");
+      ::raise(sig);
+      ::_exit(0);  // not reached
+    }
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << "signal " << sig << " status " << status;
+    EXPECT_EQ(out.names(), std::vector<std::string>{"map.json"}) << "signal " << sig;
+    EXPECT_EQ(vismap_test::slurp(path), "old");
+  }
+}
+
+TEST(Atomic, AnInterruptedRunLeavesTheOldFileAndNoTemporary) {
+  TempDir in("interrupt_in"), out("interrupt_out"), scratch("interrupt_scratch");
+  const std::string scene = in.write("big.off", big_scene(6000));
+  for (int sig : {SIGTERM, SIGINT}) {
+    const std::string json = out.write("map.json", "old");
+    const std::string o = scratch.file("o"), e = scratch.file("e");
+    const pid_t pid = vismap_test::start({kBin, scene, "--json", json, "-o", out.file("map.svg")}, "", o, e);
+    ::usleep(700'000);
+    ::kill(pid, sig);
+    const Result r = vismap_test::finish(pid, o, e);
+    if (!r.exited) {
+      EXPECT_EQ(r.status, sig);
+      EXPECT_EQ(vismap_test::slurp(json), "old");
+      EXPECT_EQ(out.names(), std::vector<std::string>{"map.json"});
+    } else {
+      // Finished before the signal: the new files are whole.
+      EXPECT_EQ(r.status, 0) << both(r);
+      EXPECT_EQ(out.names(), (std::vector<std::string>{"map.json", "map.svg"}));
+    }
+    fs::remove(out.file("map.svg"));
+  }
+}
+
+TEST(Atomic, AtomicFileDiscardsUnlessCommitted) {
+  TempDir out("atomic_unit");
+  const std::string path = out.file("a.txt");
+  {
+    vismap::AtomicFile f(path);
+    f.write("x");
+    EXPECT_TRUE(fs::exists(f.temp_path()));
+    EXPECT_EQ(fs::path(f.temp_path()).parent_path(), out.path());
+  }
+  EXPECT_TRUE(out.names().empty());
+  {
+    vismap::AtomicFile f(path);
+    f.write("hello");
+    f.commit();
+  }
+  EXPECT_EQ(vismap_test::slurp(path), "hello");
+  EXPECT_EQ(out.names(), std::vector<std::string>{"a.txt"});
+  EXPECT_THROW(vismap::write_file_atomically((out.path() / "missing" / "b").string(), "x"), std::runtime_error);
+}
+
+// ---- a scene whose exact arithmetic grows very large numbers ------------------------------------
+
+TEST(DeepRationals, NestedPerspectiveTunnelIsVerified) {
+  TempDir out("deep"), scratch("deep_scratch");
+  const std::string scene = (kData / "deep_rationals.off").string();
+  for (const std::vector<std::string>& cam :
+       {std::vector<std::string>{"--eye", "0.1000001,0.2000003,1.1", "--target", "0.1,0.2,0", "--fov", "73.3"},
+        {"--eye", "0.10000000000000001,0.2,1.0500000001", "--target", "0.1,0.2,0.14285714285714285", "--fov", "170"},
+        {"--dir", "0.1,-0.7,-3"}}) {
+    std::vector<std::string> argv = {kBin, scene, "--json", out.file("m.json")};
+    argv.insert(argv.end(), cam.begin(), cam.end());
+    Result r = vismap_test::run(argv, scratch.path());
+    ASSERT_EQ(r.status, 0) << both(r);
+    // Numbers far beyond any machine type: hundreds of digits.
+    const std::string map = vismap_test::slurp(out.file("m.json"));
+    std::size_t longest = 0, at = 0;
+    while ((at = map.find('"', at)) != std::string::npos) {
+      const std::size_t end = map.find('"', at + 1);
+      longest = std::max(longest, end - at - 1);
+      at = end + 1;
+    }
+    EXPECT_GT(longest, 60u);
+    r = vismap_test::run({kBin, "verify", scene, out.file("m.json")}, scratch.path());
+    EXPECT_EQ(r.status, 0) << both(r);
+  }
+}
+
+}  // namespace

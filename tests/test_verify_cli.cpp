@@ -1,0 +1,197 @@
+// `vismap verify` through the command line, as a user runs it: it accepts the
+// engine's maps of the whole degenerate corpus, and rejects each kind of wrong
+// map (a relabelled region, a hidden line added, a visible line removed, a wrong
+// kind, a non-canonical number) with exit status 1 and a located message; bad
+// usage is 2, unreadable input 1. The old tool name still works.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "tests/run_child.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using vismap_test::Result;
+using vismap_test::TempDir;
+
+const std::string kBin = VISMAP_BIN;
+const std::string kTool = VISMAP_CHECK_TOOL;
+const fs::path kData = VISMAP_DATA_DIR;
+
+std::vector<std::string> words(const std::string& s) {
+  std::vector<std::string> v;
+  std::size_t i = 0;
+  while (i < s.size()) {
+    const std::size_t j = s.find(' ', i);
+    if (j != i) v.push_back(s.substr(i, j == std::string::npos ? std::string::npos : j - i));
+    if (j == std::string::npos) break;
+    i = j + 1;
+  }
+  return v;
+}
+
+Result vismap(const TempDir& dir, std::vector<std::string> args, const std::string& in = "") {
+  args.insert(args.begin(), kBin);
+  return vismap_test::run(args, dir.path(), in);
+}
+
+Result verify(const TempDir& dir, const std::string& scene, const std::string& map,
+              const std::vector<std::string>& extra = {}) {
+  std::vector<std::string> args = {"verify", scene, map};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return vismap(dir, args);
+}
+
+std::string both(const Result& r) { return "stdout:\n" + r.out + "stderr:\n" + r.err; }
+
+// ---- usage and unreadable input ------------------------------------------------------
+
+TEST(VerifyCli, HelpAndUsage) {
+  TempDir dir("verify_usage");
+  Result r = vismap(dir, {"verify", "--help"});
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("usage: vismap verify SCENE MAP.json"), std::string::npos) << r.out;
+  EXPECT_NE(vismap(dir, {"--help"}).out.find("vismap verify"), std::string::npos);
+
+  const std::string scene = (kData / "t_junction.off").string();
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"verify"}, {"verify", scene}, {"verify", scene, "m.json", "extra"},
+        {"verify", "--bogus", scene, "m.json"}, {"verify", scene, "m.json", "--samples", "x"},
+        {"verify", scene, "m.json", "--samples", "-1"}, {"verify", scene, "m.json", "--seed"},
+        {"verify", scene, "m.json", "--crease", "200"}, {"verify", scene, "m.json", "--format", "gltf"},
+        {"verify", scene, "m.json", "--max-memory", "lots"}, {"verify", "-", "-"}}) {
+    r = vismap(dir, args);
+    EXPECT_EQ(r.status, 2) << args.back() << "\n" << both(r);
+    EXPECT_NE(r.err.find("vismap verify: "), std::string::npos) << both(r);
+    EXPECT_NE(r.err.find("--help"), std::string::npos) << both(r);
+  }
+}
+
+TEST(VerifyCli, UnreadableInputIsStatusOneNamingTheFile) {
+  TempDir dir("verify_input");
+  const std::string scene = (kData / "t_junction.off").string();
+  const std::string map = dir.file("m.json");
+  ASSERT_EQ(vismap(dir, {scene, "--dir", "0,0,-1", "--json", map}).status, 0);
+
+  Result r = verify(dir, dir.file("missing.off"), map);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find(dir.file("missing.off") + ": cannot open file"), std::string::npos) << both(r);
+
+  r = verify(dir, scene, dir.file("missing.json"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find(dir.file("missing.json") + ": cannot open file"), std::string::npos) << both(r);
+
+  r = verify(dir, scene, dir.path().string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("is a directory"), std::string::npos) << both(r);
+
+  const std::string bad_scene = dir.write("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n");
+  r = verify(dir, bad_scene, map);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find(bad_scene + ":"), std::string::npos) << both(r);
+
+  for (const std::string& text : {std::string(""), std::string("{"), std::string("[]"), std::string("\x01\xff garbage")}) {
+    r = verify(dir, scene, dir.write("junk.json", text));
+    EXPECT_EQ(r.status, 1) << both(r);
+    EXPECT_NE(r.out.find("FAIL format"), std::string::npos) << both(r);
+    EXPECT_NE(r.out.find("FAILED: "), std::string::npos) << both(r);
+  }
+}
+
+// ---- the engine's maps of the corpus are accepted ---------------------------------------
+
+TEST(VerifyCli, AcceptsTheEngineMapsOfTheCorpus) {
+  TempDir dir("verify_corpus");
+  std::ifstream cases(kData / "cases.txt");
+  std::string line;
+  int n = 0;
+  while (std::getline(cases, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    const auto tab = line.find('\t');
+    const std::string file = line.substr(0, tab);
+    const std::vector<std::string> args = words(tab == std::string::npos ? "" : line.substr(tab + 1));
+    const std::string scene = (kData / file).string(), map = dir.file(file + ".json");
+    std::vector<std::string> run = {scene, "--json", map};
+    run.insert(run.end(), args.begin(), args.end());
+    Result r = vismap(dir, run);
+    ASSERT_EQ(r.status, 0) << file << "\n" << both(r);
+    // The checker must be told the line options the map was made with.
+    std::vector<std::string> extra = {"--samples", "500"};
+    for (std::size_t i = 0; i < args.size(); ++i) {
+      if (args[i] == "--smooth") extra.push_back("--smooth");
+      if (args[i] == "--crease") extra.insert(extra.end(), {"--crease", args[i + 1]});
+    }
+    r = verify(dir, scene, map, extra);
+    EXPECT_EQ(r.status, 0) << file << "\n" << both(r);
+    EXPECT_EQ(r.out.rfind("OK: ", 0), 0u) << file << "\n" << both(r);
+    ++n;
+  }
+  EXPECT_GE(n, 20);
+}
+
+TEST(VerifyCli, MapOnStandardInputAndOldToolName) {
+  TempDir dir("verify_stdin");
+  const std::string scene = (kData / "shared_edge_crease.off").string(), map = dir.file("m.json");
+  ASSERT_EQ(vismap(dir, {scene, "--dir", "0,0,-1", "--json", map}).status, 0);
+  Result r = vismap(dir, {"verify", scene, "-"}, map);
+  EXPECT_EQ(r.status, 0) << both(r);
+  r = vismap_test::run({kTool, scene, map}, dir.path());
+  EXPECT_EQ(r.status, 0) << both(r);
+  EXPECT_EQ(r.out.rfind("OK: ", 0), 0u) << both(r);
+}
+
+// ---- each kind of wrong map is rejected ----------------------------------------------------
+
+// Face 0, the square [0,2]^2 at z = 0, lies under face 1, [1,3]^2 at z = 1;
+// seen from above, face 0's edges x = 2 and y = 2 are hidden for 1 < y, x <= 2.
+const char* kTwoSquares = "OFF\n8 2 0\n0 0 0\n2 0 0\n2 2 0\n0 2 0\n1 1 1\n3 1 1\n3 3 1\n1 3 1\n4 0 1 2 3\n4 4 5 6 7\n";
+
+struct Mutation {
+  const char* name;
+  std::string scene;        // "" = the two squares; else a corpus file
+  std::string find, replace;
+  std::string expect;       // a FAIL line starts with this
+};
+
+std::string replace_once(std::string s, const std::string& find, const std::string& with) {
+  const auto at = s.find(find);
+  if (at == std::string::npos) return "";
+  return s.replace(at, find.size(), with);
+}
+
+TEST(VerifyCli, RejectsEachKindOfWrongMap) {
+  TempDir dir("verify_mutations");
+  const std::string two = dir.write("two.off", kTwoSquares);
+  const std::string seg20 = R"({"from":["2","0"],"to":["2","1"],"kind":"border","faces":[0]})";
+  const std::vector<Mutation> mutations = {
+      {"relabelled region", "", R"({"face":0,)", R"({"face":1,)", "FAIL regions: "},
+      {"hidden line added", "", seg20, seg20 + ",\n" + R"({"from":["2","1"],"to":["2","2"],"kind":"border","faces":[0]})",
+       "FAIL segment: "},
+      {"visible line removed", "", R"({"from":["0","0"],"to":["0","2"],"kind":"border","faces":[0]},)" "\n", "",
+       "FAIL coverage: "},
+      {"wrong kind", "shared_edge_crease.off", R"("kind":"crease")", R"("kind":"silhouette")", "FAIL segment: "},
+      {"non-canonical number", "", R"(["2","0"])", R"(["4/2","0"])", "FAIL format: "},
+      {"negative zero", "", R"(["0","0"])", R"(["-0","0"])", "FAIL format: "},
+      {"wrong faces", "shared_edge_crease.off", R"("faces":[0,1])", R"("faces":[0])", "FAIL "},
+  };
+  for (const Mutation& m : mutations) {
+    SCOPED_TRACE(m.name);
+    const std::string scene = m.scene.empty() ? two : (kData / m.scene).string();
+    const std::string good = dir.file("good.json"), bad = dir.file("bad.json");
+    ASSERT_EQ(vismap(dir, {scene, "--dir", "0,0,-1", "--json", good}).status, 0);
+    ASSERT_EQ(verify(dir, scene, good).status, 0);
+    const std::string text = replace_once(vismap_test::slurp(good), m.find, m.replace);
+    ASSERT_FALSE(text.empty()) << "the engine's map no longer contains " << m.find;
+    std::ofstream(bad, std::ios::binary) << text;
+    const Result r = verify(dir, scene, bad);
+    EXPECT_EQ(r.status, 1) << both(r);
+    EXPECT_NE(r.out.find(m.expect), std::string::npos) << "wanted '" << m.expect << "'\n" << both(r);
+    EXPECT_NE(r.out.find("FAILED: "), std::string::npos) << both(r);
+  }
+}
+
+}  // namespace

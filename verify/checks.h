@@ -1,0 +1,33 @@
+// The geometric checks of check_map, one file each; they share this context.
+#pragma once
+#include "verify/checker.h"
+#include "verify/failures.h"
+#include "verify/local.h"
+#include "verify/map_doc.h"
+#include "verify/screen.h"
+
+namespace vismap_check {
+
+struct Context {
+  const Screen& sc;
+  const MapDoc& doc;
+  const Options& opt;
+  Failures& fail;
+  Report& rep;
+};
+
+void check_regions(Context& c);    // 4: random samples, label against brute force
+void check_area(Context& c);       // 5: total area of the regions = area of the union
+void check_segments(Context& c);   // 6: each segment is a visible line of the right kind
+void check_coverage(Context& c);   // 7: each visible edge / intersection line is drawn
+void check_topology(Context& c);   // segments meet only at endpoints; no superfluous vertex
+
+std::string describe(const std::vector<std::uint32_t>& faces, Kind k);   // "crease [3,4]"
+
+// Segments whose closed extent holds q.
+std::vector<std::size_t> segments_at(const MapDoc& doc, const P2& q);
+
+// Why no visible drawn line is at a point (for messages), from its LineView.
+std::string why_nothing(const LineView& lv);
+
+}  // namespace vismap_check
