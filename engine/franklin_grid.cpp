@@ -1,6 +1,5 @@
 #include "engine/franklin_grid.h"
 
-#include <CGAL/Iso_rectangle_2.h>
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +9,6 @@ namespace vismap::engine {
 VISMAP_KERNEL_BEGIN
 namespace {
 
-using Rect = K::Iso_rectangle_2;
 
 // Index of the cell holding double coordinate v: the last boundary <= v (clamped).
 int cell_index(const std::vector<double>& bounds, double v) {
@@ -129,9 +127,28 @@ bool behind_throughout(const Facet& f, const Facet& b, const std::array<Corner, 
   return deeper || (b.face < f.face && same_plane(f, b));
 }
 
+// sign(depth of p - depth of f's plane under p).
+CGAL::Sign depth_above(const P3& p, const Facet& f) {
+  return filtered_sign(
+      [&] { return approx_of(p.z) - (approx_of(f.a) * approx_of(p.x) + approx_of(f.b) * approx_of(p.y) + approx_of(f.c)); },
+      [&]() -> mpq_class {
+        return to_mpq(p.z) - (to_mpq(f.a) * to_mpq(p.x) + to_mpq(f.b) * to_mpq(p.y) + to_mpq(f.c));
+      });
+}
+
 // Both points strictly behind the plane of b: the whole segment is.
 bool curve_behind(const Curve& cv, const Facet& b) {
-  return cv.s.z > b.depth_at(cv.s.xy()) && cv.t.z > b.depth_at(cv.t.xy());
+  return depth_above(cv.s, b) == CGAL::POSITIVE && depth_above(cv.t, b) == CGAL::POSITIVE;
+}
+
+// The segment s-t meets the closed cell (its bounding box is known to): not all
+// four corners strictly on one side of its line.
+bool meets_cell(const P3& s, const P3& t, const std::array<Corner, 4>& c) {
+  const CGAL::Sign first = orientation(s, t, c[0]);
+  if (first == CGAL::ZERO) return true;
+  for (int k = 1; k < 4; ++k)
+    if (orientation(s, t, c[k]) != first) return true;
+  return false;
 }
 
 }  // namespace
@@ -235,9 +252,9 @@ bool intersection_segment(const Facet& A, const Facet& B, P2& p, P2& q) {
   auto one_side = [](const Facet& F, const Facet& G) {
     bool pos = false, neg = false;
     for (const P3& v : F.v) {
-      auto s = CGAL::compare(v.z, G.depth_at(v.xy()));
-      pos |= s == CGAL::LARGER;
-      neg |= s == CGAL::SMALLER;
+      const CGAL::Sign s = depth_above(v, G);
+      pos |= s == CGAL::POSITIVE;
+      neg |= s == CGAL::NEGATIVE;
     }
     return !(pos && neg);
   };
@@ -320,15 +337,14 @@ void bucket_curves(Grid& g, const ScreenScene& ss, Stats& stats) {
   std::int64_t hidden = 0, listed = 0;
   for (int ci = 0; ci < static_cast<int>(ss.curves.size()); ++ci) {
     const Curve& cv = ss.curves[ci];
-    Seg2 seg(cv.s.xy(), cv.t.xy());
     CellRange r = range_of(g, cv.box);
     bool kept = false;
     for (int iy = r.y0; iy <= r.y1; ++iy)
       for (int ix = r.x0; ix <= r.x1; ++ix) {
         Cell& cell = g.at(ix, iy);
-        if ((r.x0 != r.x1 || r.y0 != r.y1) &&
-            !CGAL::do_intersect(seg, Rect(P2(g.X[ix], g.Y[iy]), P2(g.X[ix + 1], g.Y[iy + 1]))))
-          continue;
+        // (A cell the double box reaches only by rounding may be kept: harmless,
+        // cut points count only in the cell that holds them.)
+        if ((r.x0 != r.x1 || r.y0 != r.y1) && !meets_cell(cv.s, cv.t, corners(g, ix, iy))) continue;
         if (cell.blocker >= 0 && curve_behind(cv, ss.facets[cell.blocker])) continue;
         cell.curves.push_back(ci);
         kept = true;
