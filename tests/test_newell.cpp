@@ -318,6 +318,12 @@ TEST(EdgeOn, LinePiercingAFaceIsCutWhereItComesOut) {
   EXPECT_TRUE(has_segment(m, "-4", "1", "-7/4", "1/4")) << vismap::to_json(m);
   EXPECT_FALSE(has_segment(m, "-4", "1", "-1", "0")) << "the hidden part is drawn";
   EXPECT_EQ(map_json(m), map_json(vismap::visibility_franklin(sq, vismap::make_view(ortho({0, -1, 0}), sq), {})));
+  // The map with that segment drawn whole (what Franklin wrote before the fix) is
+  // rejected by the checker: its segment check cuts where the line pierces a plane.
+  for (auto& s : m.segments)
+    if (s.from.x == -4 && s.from.y == 1 && s.to.x == mpq_class(-7, 4)) s.to = vismap::Point2{-1, 0};
+  sq.file = "pierce";
+  EXPECT_FALSE(vismap_check::check_map(sq, vismap::to_json(m), {}).ok) << vismap::to_json(m);
   // Two triangles, the second seen edge-on: its nearer edge (depth -3t) is behind
   // the first (depth 14t - 14) until t = 14/17, at (-62/17, 42/17).
   vismap::Scene tri;

@@ -9,26 +9,6 @@
 #include "verify/rational.h"
 
 namespace vismap_check {
-namespace {
-
-// q (never a map vertex) must be inside a segment, and that segment must carry
-// the kind and faces of the first visible line there.
-void require_drawn(Context& c, const P2& q, const LineView& lv, const std::string& what) {
-  ++c.rep.edge_points_checked;
-  std::vector<std::size_t> at = segments_at(c.doc, q);
-  if (at.empty()) {
-    c.fail.add("coverage: no segment at " + str(q) + " where " + what + " is visible");
-    return;
-  }
-  if (at.size() > 1) return;   // overlapping segments: reported by the topology check
-  const MapSegment& seg = c.doc.segments[at[0]];
-  auto first = lv.first();
-  bool match = false;
-  for (const LineItem* it : first) match = match || (it->kind == seg.kind && it->faces == seg.faces);
-  if (!match && !first.empty())
-    c.fail.add("coverage: segments[" + std::to_string(at[0]) + "] " + describe(seg) + " at " + str(q) +
-               ": the first visible line there is " + describe(first[0]->faces, first[0]->kind));
-}
 
 // Parameters t in (0, 1), with 0 and 1, along the screen segment a -> b
 // (depth da -> db) where what lies over it may change: crossings with projected
@@ -86,6 +66,27 @@ std::vector<mpq_class> stretch_params(const Screen& sc, const MapDoc& doc, const
   std::sort(ts.begin(), ts.end());
   ts.erase(std::unique(ts.begin(), ts.end()), ts.end());
   return ts;
+}
+
+namespace {
+
+// q (never a map vertex) must be inside a segment, and that segment must carry
+// the kind and faces of the first visible line there.
+void require_drawn(Context& c, const P2& q, const LineView& lv, const std::string& what) {
+  ++c.rep.edge_points_checked;
+  std::vector<std::size_t> at = segments_at(c.doc, q);
+  if (at.empty()) {
+    c.fail.add("coverage: no segment at " + str(q) + " where " + what + " is visible");
+    return;
+  }
+  if (at.size() > 1) return;   // overlapping segments: reported by the topology check
+  const MapSegment& seg = c.doc.segments[at[0]];
+  auto first = lv.first();
+  bool match = false;
+  for (const LineItem* it : first) match = match || (it->kind == seg.kind && it->faces == seg.faces);
+  if (!match && !first.empty())
+    c.fail.add("coverage: segments[" + std::to_string(at[0]) + "] " + describe(seg) + " at " + str(q) +
+               ": the first visible line there is " + describe(first[0]->faces, first[0]->kind));
 }
 
 // True when one convex face (not one of `own`) lies strictly in front of the

@@ -30,4 +30,9 @@ std::vector<std::size_t> segments_at(const MapDoc& doc, const P2& q);
 // Why no visible drawn line is at a point (for messages), from its LineView.
 std::string why_nothing(const LineView& lv);
 
+// Parameters 0 = t0 < t1 < ... < 1 along the screen segment a -> b (depth da -> db)
+// between which nothing over the line changes (check_coverage.cpp).
+std::vector<mpq_class> stretch_params(const Screen& sc, const MapDoc& doc, const P2& a, const P2& b,
+                                      const mpq_class& da, const mpq_class& db);
+
 }  // namespace vismap_check
