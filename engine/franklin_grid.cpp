@@ -207,7 +207,12 @@ void bucket_facets(Grid& g, ScreenScene& ss, Stats& stats) {
         auto c = corners(g, ix, iy);
         if (cell.blocker >= 0 && behind_throughout(f, ss.facets[cell.blocker], c)) { ++skipped; continue; }
         kept = true;
-        bool covers = std::all_of(c.begin(), c.end(), [&](const Corner& p) { return strictly_inside(f, p); });
+        // Only a planar polygon's facet may block: the edges of its own face lie in
+        // its plane, so what is behind it cannot hide them. A non-planar polygon's
+        // fan piece can be in front of its own face's edge while another face,
+        // behind the piece, still hides that edge (no face hides its own edges).
+        bool covers = f.planar &&
+                      std::all_of(c.begin(), c.end(), [&](const Corner& p) { return strictly_inside(f, p); });
         if (!covers) { cell.facets.push_back(fi); continue; }
         ++blockers;
         if (cell.blocker < 0 || behind_throughout(ss.facets[cell.blocker], f, c)) { cell.blocker = fi; continue; }

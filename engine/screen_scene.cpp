@@ -111,6 +111,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     const WorldFacet& w = wf.facets[fi];
     Facet& f = ss.facets[fi];
     f.face = w.face;
+    f.planar = w.planar;
     const std::size_t n = w.v.size();
     for (std::size_t k = 0; k < n; ++k) {
       std::uint32_t a = w.v[k], b = w.v[(k + 1) % n];

@@ -24,6 +24,7 @@ struct Facet {
   FT a, b, c;                    // depth(x, y) = a x + b y + c   (not edge-on)
   CGAL::Bbox_2 box;              // contains the exact projection
   bool occluder = false;         // hides and labels: not edge-on, not culled
+  bool planar = true;            // false: a fan piece of a non-planar polygon
   FT depth_at(const P2& p) const { return a * p.x() + b * p.y() + c; }
 };
 
