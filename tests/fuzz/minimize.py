@@ -2,6 +2,8 @@
 # Usage: tests/fuzz/minimize.py SCENE.off "VISMAP OPTIONS" "VERIFY OPTIONS" OUT.off
 # (VISMAP=path/to/vismap to pick the binary): drops faces one by one while the
 # map still fails vismap verify (or the engine crashes), then unused vertices.
+# MODE=crash keeps only an engine failure (an internal error, status 3, or a
+# signal); MODE=verify only a map that vismap verify rejects.
 # Shrinks an OFF scene while `vismap SCENE ARGS --json m && vismap verify SCENE m VARGS` keeps failing.
 import subprocess, sys, os, tempfile
 V = os.environ.get('VISMAP', 'build/vismap')
@@ -16,8 +18,10 @@ def write(vs, fs, path):
 def fails(vs, fs):
     p = os.path.join(d, 's.off'); m = os.path.join(d, 'm.json')
     write(vs, fs, p)
+    mode = os.environ.get('MODE', 'any')
     r = subprocess.run([V, p] + args + ['--json', m], capture_output=True)
-    if r.returncode != 0: return r.returncode not in (0,1,2)  # crash counts
+    if r.returncode != 0: return mode != 'verify' and r.returncode not in (0, 1, 2)  # crash counts
+    if mode == 'crash': return False
     r = subprocess.run([V, 'verify', p, m] + vargs, capture_output=True)
     return r.returncode == 1
 assert fails(verts, faces), "does not fail"
