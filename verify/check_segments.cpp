@@ -52,6 +52,23 @@ std::vector<mpq_class> parameters() {
 
 constexpr int kPointsPerSegment = 3;
 
+// At a clean point q of the segment, its line must be the first visible drawn
+// line there; false (and a failure recorded) if not.
+bool first_at(Context& c, const MapSegment& seg, const std::string& name, const P2& q, const LineView& lv) {
+  ++c.rep.segment_points_checked;
+  auto first = lv.first();
+  if (first.empty()) {
+    c.fail.add("segment: " + name + " at " + str(q) + ": " + why_nothing(lv));
+    return false;
+  }
+  bool match = false;
+  for (const LineItem* it : first) match = match || (it->kind == seg.kind && it->faces == seg.faces);
+  if (!match)
+    c.fail.add("segment: " + name + " at " + str(q) + ": the first visible line there is " +
+               describe(first[0]->faces, first[0]->kind));
+  return match;
+}
+
 // The line under a segment: the depths at its ends of the edge piece or
 // intersection line with its kind and faces, from two clean interior points
 // (depth is affine along a screen line). False if not found.
@@ -88,20 +105,7 @@ void check_whole(Context& c, const MapSegment& seg, const std::string& name) {
     const mpq_class t = (ts[k] + ts[k + 1]) / 2;
     P2 q{seg.from.x + t * s.x, seg.from.y + t * s.y};
     LineView lv = look_along(c.sc, q, s);
-    if (!lv.clean) continue;
-    ++c.rep.segment_points_checked;
-    auto first = lv.first();
-    if (first.empty()) {
-      c.fail.add("segment: " + name + " at " + str(q) + ": " + why_nothing(lv));
-      return;
-    }
-    bool match = false;
-    for (const LineItem* it : first) match = match || (it->kind == seg.kind && it->faces == seg.faces);
-    if (!match) {
-      c.fail.add("segment: " + name + " at " + str(q) + ": the first visible line there is " +
-                 describe(first[0]->faces, first[0]->kind));
-      return;
-    }
+    if (lv.clean && !first_at(c, seg, name, q, lv)) return;
   }
 }
 
@@ -115,26 +119,15 @@ void check_segments(Context& c) {
     if (seg.kind == Kind::Smooth && !c.opt.smooth) c.fail.add("segment: " + name + ": smooth edges were not asked for");
     P2 s{seg.to.x - seg.from.x, seg.to.y - seg.from.y};
     int done = 0;
+    bool failed = false;
     for (const mpq_class& t : ts) {
       P2 q{seg.from.x + t * s.x, seg.from.y + t * s.y};
       LineView lv = look_along(c.sc, q, s);
       if (!lv.clean) continue;
-      ++c.rep.segment_points_checked;
-      auto first = lv.first();
-      if (first.empty()) {
-        c.fail.add("segment: " + name + " at " + str(q) + ": " + why_nothing(lv));
-        break;
-      }
-      bool match = false;
-      for (const LineItem* it : first) match = match || (it->kind == seg.kind && it->faces == seg.faces);
-      if (!match) {
-        c.fail.add("segment: " + name + " at " + str(q) + ": the first visible line there is " +
-                   describe(first[0]->faces, first[0]->kind));
-        break;
-      }
+      if (!first_at(c, seg, name, q, lv)) { failed = true; break; }
       if (++done == kPointsPerSegment) break;
     }
-    if (done == kPointsPerSegment) check_whole(c, seg, name);
+    if (!failed) check_whole(c, seg, name);
   }
 }
 
