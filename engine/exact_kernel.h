@@ -53,6 +53,24 @@ inline FT from_mpq(const mpq_class& q) { return FT(q); }
 inline CGAL::Interval_nt<false> approx_of(const FT& x) { return x.approx(); }
 #endif
 
+// The sign of an expression: on the intervals of its operands if they decide it,
+// else exactly in GMP rationals; counted like CGAL's own filters. For the hot
+// predicates whose lazy form would build a tree of numbers at every call.
+using Interval = CGAL::Interval_nt<false>;
+template <class OnIntervals, class OnRationals>
+CGAL::Sign filtered_sign(OnIntervals&& approx, OnRationals&& exact) {
+  ++filter_counts.calls;
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const Interval v = approx();
+    if (v.inf() > 0) return CGAL::POSITIVE;
+    if (v.sup() < 0) return CGAL::NEGATIVE;
+  }
+  ++filter_counts.exact;
+  const mpq_class v = exact();
+  return static_cast<CGAL::Sign>(sgn(v));
+}
+
 // Screen-space point with its depth: (x, y) on the screen, z = depth (smaller = nearer).
 // The point (x, y) is built once: each lazy point made costs an allocation.
 struct P3 {

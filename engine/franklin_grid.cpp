@@ -53,23 +53,6 @@ std::array<Corner, 4> corners(const Grid& g, int ix, int iy) {
           Corner{g.X[ix], g.Y[iy + 1]}};
 }
 
-using Interval = CGAL::Interval_nt<false>;
-
-// The sign of an expression: evaluated on intervals, else exactly.
-template <class OnIntervals, class OnRationals>
-CGAL::Sign filtered_sign(OnIntervals&& approx, OnRationals&& exact) {
-  ++exact::filter_counts.calls;
-  {
-    CGAL::Protect_FPU_rounding<true> upward;
-    const Interval v = approx();
-    if (v.inf() > 0) return CGAL::POSITIVE;
-    if (v.sup() < 0) return CGAL::NEGATIVE;
-  }
-  ++exact::filter_counts.exact;
-  const mpq_class v = exact();
-  return static_cast<CGAL::Sign>(sgn(v));
-}
-
 // sign(depth of f - depth of b) at corner p.
 CGAL::Sign depth_order(const Facet& f, const Facet& b, const Corner& p) {
   return filtered_sign(

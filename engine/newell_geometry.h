@@ -20,23 +20,6 @@ inline CGAL::Bbox_2 box_of(const std::vector<P3>& v) {
   return b;
 }
 
-using Interval = CGAL::Interval_nt<false>;
-
-// The sign of an expression: on the intervals of its operands if they decide
-// it, else exactly in GMP rationals. Counted like CGAL's own filters.
-template <class OnIntervals, class OnRationals>
-CGAL::Sign filtered_sign(OnIntervals&& approx, OnRationals&& exact) {
-  ++exact::filter_counts.calls;
-  {
-    CGAL::Protect_FPU_rounding<true> upward;
-    const Interval v = approx();
-    if (v.inf() > 0) return CGAL::POSITIVE;
-    if (v.sup() < 0) return CGAL::NEGATIVE;
-  }
-  ++exact::filter_counts.exact;
-  return static_cast<CGAL::Sign>(sgn(exact()));
-}
-
 // An affine function of the screen point, f(x, y) = a x + b y + c: a split line.
 struct Line {
   FT a, b, c;
