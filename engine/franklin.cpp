@@ -1,26 +1,14 @@
 // Franklin 1980, "A linear time exact hidden surface algorithm", step by step.
 // Each step is one call; the steps live in screen_scene.cpp (1, culling),
 // franklin_grid.cpp (2-9, 11) and arrangements/map_builder.cpp (10).
-#include <chrono>
 
 #include "arrangements/map_builder.h"
 #include "engine/franklin_grid.h"
 #include "engine/screen_scene.h"
+#include "engine/engine_run.h"
 #include "engine/visibility.h"
 
 namespace vismap {
-
-namespace {
-struct Clock {
-  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
-  double lap() {
-    auto t = std::chrono::steady_clock::now();
-    double s = std::chrono::duration<double>(t - t0).count();
-    t0 = t;
-    return s;
-  }
-};
-}  // namespace
 
 #ifdef VISMAP_FLOAT_KERNEL
 #define VISMAP_FRANKLIN_ENTRY visibility_franklin_float
@@ -29,16 +17,10 @@ struct Clock {
 #endif
 VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const EngineOptions& opt) {
   using namespace engine;
-  VisibilityMap map;
-  map.scene_file = scene.file;
-  map.scene_faces = scene.faces.size();
-  map.perspective = view.perspective;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) map.view[r][c] = mpq_class(view.m[r][c]);
+  VisibilityMap map = start_map(scene, view);
   Stats& st = map.stats;
-  st.count("faces_read", static_cast<std::int64_t>(scene.faces.size()));
   const exact::FilterCounts filter_before = exact::filter_counts;
-  Clock clock;
+  PhaseClock clock;
 
   // 1. Project the scene exactly; skip what cannot be seen (outside, edge-on, back faces).
   ScreenScene ss = make_screen_scene(scene, view, opt, st);

@@ -5,41 +5,23 @@
 // pieces) and arrangements/map_builder.cpp (the map). Stats follow the paper's
 // Figure 2: faces in, faces considered, fragments written, and the time spent
 // ordering and slicing and writing the fragments.
-#include <chrono>
 
 #include "arrangements/map_builder.h"
 #include "engine/newell_order.h"
 #include "engine/newell_overlay.h"
 #include "engine/screen_scene.h"
+#include "engine/engine_run.h"
 #include "engine/visibility.h"
 
 namespace vismap {
 
-namespace {
-struct Clock {
-  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
-  double lap() {
-    auto t = std::chrono::steady_clock::now();
-    double s = std::chrono::duration<double>(t - t0).count();
-    t0 = t;
-    return s;
-  }
-};
-}  // namespace
-
 VisibilityMap visibility_newell(const Scene& scene, const View& view, const EngineOptions& opt,
                                 std::vector<PaintedFragment>* painter) {
   using namespace engine;
-  VisibilityMap map;
-  map.scene_file = scene.file;
-  map.scene_faces = scene.faces.size();
-  map.perspective = view.perspective;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) map.view[r][c] = mpq_class(view.m[r][c]);
+  VisibilityMap map = start_map(scene, view);
   Stats& st = map.stats;
-  st.count("faces_read", static_cast<std::int64_t>(scene.faces.size()));
   const exact::FilterCounts filter_before = exact::filter_counts;
-  Clock clock;
+  PhaseClock clock;
 
   // Transforming and initialising: project exactly, drop what cannot be seen
   // (outside, edge-on, back faces of closed solids), as Franklin's engine does.

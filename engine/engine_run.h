@@ -1,0 +1,37 @@
+// What both engines' drivers start with: the map's header filled from the scene
+// and view, and a clock for the phase timings in the stats. No CGAL.
+#pragma once
+#include <chrono>
+#include <cstdint>
+
+#include "arrangements/visibility_map.h"
+#include "engine/camera.h"
+#include "engine/scene.h"
+
+namespace vismap::engine {
+
+// The map before any engine work: scene, projection, the exact view matrix and
+// the count of faces read.
+inline VisibilityMap start_map(const Scene& scene, const View& view) {
+  VisibilityMap map;
+  map.scene_file = scene.file;
+  map.scene_faces = scene.faces.size();
+  map.perspective = view.perspective;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) map.view[r][c] = mpq_class(view.m[r][c]);
+  map.stats.count("faces_read", static_cast<std::int64_t>(scene.faces.size()));
+  return map;
+}
+
+// Seconds since the previous lap (or construction).
+struct PhaseClock {
+  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+  double lap() {
+    auto t = std::chrono::steady_clock::now();
+    double s = std::chrono::duration<double>(t - t0).count();
+    t0 = t;
+    return s;
+  }
+};
+
+}  // namespace vismap::engine
