@@ -658,9 +658,13 @@ std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss,
           auto c = depth_against(ss.facets[covers[i].facet], probe, zm);
           if (!(c == CGAL::NEGATIVE || (c == CGAL::ZERO && face < cv.order_face))) continue;
           bool both = covers[i].left && covers[i].right;
-          for (std::size_t j = 0; j < covers.size() && !both; ++j)   // two facets of one polygon
-            if (j != i && ss.facets[covers[j].facet].face == face)
-              both = (covers[i].left || covers[j].left) && (covers[i].right || covers[j].right);
+          // Two facets of one (fanned) polygon covering the two sides hide it only
+          // where they meet at m: the same depth there. A facet of that polygon
+          // further back, a fold's other layer, does not continue this one.
+          for (std::size_t j = 0; j < covers.size() && !both; ++j)
+            if (j != i && ss.facets[covers[j].facet].face == face &&
+                (covers[i].left || covers[j].left) && (covers[i].right || covers[j].right))
+              both = depth_order(ss.facets[covers[i].facet], ss.facets[covers[j].facet], probe) == CGAL::ZERO;
           if (both) vp.visible = false;
         }
       }

@@ -305,9 +305,16 @@ bool painted_over(const ScreenScene& ss, const std::vector<Fragment>& order, con
   for (int i = 0; i < static_cast<int>(cov.size()); ++i) {
     const int g = cov[i].face;
     if (std::binary_search(cv.faces.begin(), cv.faces.end(), g)) continue;
-    bool l = false, r = false;   // face g, all its fragments together, covers both sides
+    // Face g covers both sides: this fragment alone, or with another of g's that
+    // meets it at m (the same depth there); a fold's other layer does not count.
+    bool l = cov[i].left, r = cov[i].right;
+    const Facet& fi = ss.facets[order[cov[i].frag].facet];
     for (const Cover& c : cov)
-      if (c.face == g) { l |= c.left; r |= c.right; }
+      if (!(l && r) && c.face == g && (c.left != l || c.right != r) &&
+          CGAL::compare(ss.facets[order[c.frag].facet].depth_at(m), fi.depth_at(m)) == CGAL::EQUAL) {
+        l |= c.left;
+        r |= c.right;
+      }
     if (!(l && r)) continue;
     if (!have_zm) { zm = depth_on(cv, m); have_zm = true; }
     const auto cmp = CGAL::compare(ss.facets[order[cov[i].frag].facet].depth_at(m), zm);

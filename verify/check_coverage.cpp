@@ -151,7 +151,7 @@ void edges(Context& c) {
         if (!lv.clean) return;
         const LineItem* mine = nullptr;
         for (const LineItem& it : lv.items)
-          if (it.kind != Kind::Intersection && it.depth == d) mine = &it;
+          if (it.kind != Kind::Intersection && !it.cut && it.depth == d) mine = &it;
         if (!mine || !mine->visible || !mine->drawn) return;
         require_drawn(c, q, lv,
                       "the edge of face " + std::to_string(p.face) + " from " + str(a) + " to " + str(b) + " (" +

@@ -33,13 +33,16 @@ PointLabel label_at(const Screen& sc, const P2& q) {
 }
 
 std::vector<const LineItem*> LineView::first() const {
-  const LineItem* best = nullptr;
-  for (const LineItem& it : items)
-    if (it.visible && it.drawn && (!best || it.before(*best))) best = &it;
   std::vector<const LineItem*> out;
-  if (!best) return out;
-  for (const LineItem& it : items)
-    if (it.visible && it.drawn && it.same_key(*best)) out.push_back(&it);
+  for (bool cuts : {false, true}) {
+    const LineItem* best = nullptr;
+    for (const LineItem& it : items)
+      if (it.cut == cuts && it.visible && it.drawn && (!best || it.before(*best))) best = &it;
+    if (!best) continue;
+    for (const LineItem& it : items)
+      if (it.cut == cuts && it.visible && it.drawn && it.same_key(*best)) out.push_back(&it);
+    return out;
+  }
   return out;
 }
 
@@ -50,7 +53,7 @@ LineView look_along(const Screen& sc, const P2& q, const P2& s) {
     mpq_class depth, slope;
     int side = 0;   // diagonals: +1 the piece lies left of s, -1 right
   };
-  std::vector<Hit> edges, diags, covers;
+  std::vector<Hit> edges, diags, covers, cuts;   // cuts: near-plane cuts (never lines)
   for (std::uint32_t pi : sc.grid.near(q)) {
     const Piece& p = sc.pieces[pi];
     if (!p.box.contains(q)) continue;
@@ -79,6 +82,8 @@ LineView look_along(const Screen& sc, const P2& q, const P2& s) {
       if (p.role[i] == Role::Diagonal) {
         h.side = p.orient * sgn(k);   // a convex piece lies left of its edges when ccw
         diags.push_back(std::move(h));
+      } else if (p.role[i] == Role::Clip) {
+        cuts.push_back(std::move(h));   // bounds the piece, but is no edge of its face
       } else {
         edges.push_back(std::move(h));
       }
@@ -102,7 +107,7 @@ LineView look_along(const Screen& sc, const P2& q, const P2& s) {
   // Clean: any two things at the same depth over q agree along the line, so
   // the order of everything is the same on both sides of q.
   std::vector<const Hit*> all;
-  for (const auto* v : {&edges, &diags, &covers})
+  for (const auto* v : {&edges, &diags, &covers, &cuts})
     for (const Hit& h : *v) all.push_back(&h);
   std::sort(all.begin(), all.end(), [](const Hit* a, const Hit* b) { return a->depth < b->depth; });
   for (std::size_t i = 1; i < all.size(); ++i)
@@ -127,6 +132,15 @@ LineView look_along(const Screen& sc, const P2& q, const P2& s) {
     }
     it.kind = edge_kind(ps, sc.cos_crease);
     it.depth = edges[i].depth;
+    out.items.push_back(std::move(it));
+  }
+  // Near-plane cuts: a map may draw one as its face's border (the spec does not
+  // say), but only where no edge piece or intersection line is visible.
+  for (const Hit& h : cuts) {
+    LineItem it;
+    it.faces = {h.p->face};
+    it.depth = h.depth;
+    it.cut = true;
     out.items.push_back(std::move(it));
   }
   // Intersection lines: two faces' planes meeting over q along the line, away

@@ -29,6 +29,7 @@ struct LineItem {
   mpq_class depth;                    // depth of the 3D point over q
   bool visible = false;
   bool drawn = false;
+  bool cut = false;   // a near-plane cut: no edge of its face, so a line only where no edge is
   bool before(const LineItem& o) const {   // order (depth, lowest face index)
     return depth < o.depth || (depth == o.depth && faces[0] < o.faces[0]);
   }
@@ -41,7 +42,8 @@ struct LineView {
   // answer may differ from both sides; such points are skipped.
   bool clean = false;
   std::vector<LineItem> items;
-  // The visible, drawn items first in the order (several only on exact ties).
+  // The visible, drawn items first in the order (several only on exact ties);
+  // near-plane cuts only where no edge piece or intersection line is visible.
   std::vector<const LineItem*> first() const;
 };
 
