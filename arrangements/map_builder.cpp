@@ -108,7 +108,13 @@ void build_map(std::vector<MapPiece>& pieces, VisibilityMap& map) {
       if (!have_mid) { mid = CGAL::midpoint(e->source()->point(), e->target()->point()); have_mid = true; }
       const MapPiece& w = pieces[winner];
       auto c = CGAL::compare(depth_at(m, mid), depth_at(w, mid));
-      if (c == CGAL::SMALLER || (c == CGAL::EQUAL && m.order_face < w.order_face)) winner = pi;
+      // Ties in (depth, lowest face index), e.g. two intersection lines of one face
+      // along one 3D line: the faces lists, lexicographically, so that the written
+      // segment does not depend on the order the pieces came in.
+      if (c == CGAL::SMALLER ||
+          (c == CGAL::EQUAL && (m.order_face < w.order_face ||
+                                (m.order_face == w.order_face && *m.faces < *w.faces))))
+        winner = pi;
     }
     if (winner >= 0) {
       at.drawn = true;

@@ -383,7 +383,11 @@ void drop_painted_over(ScreenScene& ss, const std::vector<Fragment>& order, Stat
       if (std::binary_search(cv.faces.begin(), cv.faces.end(), G.face) ||
           std::find(cv.sharers.begin(), cv.sharers.end(), G.facet) != cv.sharers.end())
         return;
+      // Only a planar polygon's fragment: a line another curve shares with a fanned
+      // one can pass behind the fold's front layer unhidden (it shares the face), and
+      // its visibility changes where this curve crosses it (a fuzz finding).
       const Facet& F = ss.facets[G.facet];
+      if (!F.planar) return;
       for (const P3* e : {&cv.s, &cv.t}) {
         for (std::size_t k = 0; k < G.v.size(); ++k)
           if (orient(G.v[k], G.v[(k + 1) % G.v.size()], *e) != CGAL::POSITIVE) return;

@@ -21,6 +21,7 @@ void add_piercing_lines(ScreenScene& ss, Stats& stats);
 // Drops the curves that one fragment covers whole and lies strictly in front of
 // (both ends strictly inside its projection, strictly behind its plane): they
 // are hidden, and bound nothing (the same fragment's face is on both sides).
+// Only fragments of planar polygons drop curves (see the .cpp).
 void drop_painted_over(ScreenScene& ss, const std::vector<Fragment>& order, Stats& stats);
 
 // Where each curve must be cut: every point where another curve crosses it or

@@ -79,8 +79,8 @@ LineView look_along(const Screen& sc, const P2& q, const P2& s) {
       mpq_class t = e.x != 0 ? mpq_class((q.x - a.x) / e.x) : mpq_class((q.y - a.y) / e.y);
       mpq_class k = s.x != 0 ? mpq_class(e.x / s.x) : mpq_class(e.y / s.y);   // e = k s
       Hit h{&p, da + t * (db - da), (db - da) / k};
+      h.side = p.orient * sgn(k);   // a convex piece lies left of its edges when ccw
       if (p.role[i] == Role::Diagonal) {
-        h.side = p.orient * sgn(k);   // a convex piece lies left of its edges when ccw
         diags.push_back(std::move(h));
       } else if (p.role[i] == Role::Clip) {
         cuts.push_back(std::move(h));   // bounds the piece, but is no edge of its face
@@ -90,15 +90,20 @@ LineView look_along(const Screen& sc, const P2& q, const P2& s) {
     }
     if (!on_edge && inside && p.orient != 0) covers.push_back(Hit{&p, p.depth_at(q), p.slope_along(s)});
   }
-  // A non-planar face also covers q on a fan diagonal when its triangles there
-  // lie on both sides (not at a fold). No plane: such covers make no intersection.
+  // A fanned face also covers q on a line where two of its triangles meet, one on
+  // each side (not at a fold): a fan diagonal, or its own boundary where it runs
+  // along itself (a corner repeated: a slit), since q is then inside the union of
+  // its triangles. No plane: such covers make no intersection.
   std::vector<Hit> bent;
-  for (std::size_t i = 0; i < diags.size(); ++i) {
-    if (diags[i].p->orient == 0) continue;
-    for (std::size_t j = i + 1; j < diags.size(); ++j) {
-      if (diags[j].p->face != diags[i].p->face || diags[j].depth != diags[i].depth) continue;
-      if (diags[j].p->orient != 0 && diags[j].side == -diags[i].side) {
-        bent.push_back(diags[i]);
+  std::vector<const Hit*> sides;
+  for (const auto* v : {&diags, &edges})
+    for (const Hit& h : *v)
+      if (h.p->orient != 0) sides.push_back(&h);
+  for (std::size_t i = 0; i < sides.size(); ++i) {
+    for (std::size_t j = i + 1; j < sides.size(); ++j) {
+      if (sides[j]->p->face != sides[i]->p->face || sides[j]->depth != sides[i]->depth) continue;
+      if (sides[j]->side == -sides[i]->side) {
+        bent.push_back(*sides[i]);
         break;
       }
     }

@@ -30,10 +30,13 @@ struct LineItem {
   bool visible = false;
   bool drawn = false;
   bool cut = false;   // a near-plane cut: no edge of its face, so a line only where no edge is
-  bool before(const LineItem& o) const {   // order (depth, lowest face index)
-    return depth < o.depth || (depth == o.depth && faces[0] < o.faces[0]);
+  // Order (depth, lowest face index); where the spec leaves a tie (two lines of
+  // one face, e.g. intersection lines with faces 1,7 and 1,8 along one 3D line),
+  // the faces lists lexicographically.
+  bool before(const LineItem& o) const {
+    return depth < o.depth || (depth == o.depth && faces < o.faces);
   }
-  bool same_key(const LineItem& o) const { return depth == o.depth && faces[0] == o.faces[0]; }
+  bool same_key(const LineItem& o) const { return depth == o.depth && faces == o.faces; }
 };
 
 struct LineView {
