@@ -11,13 +11,16 @@
 //                         (visibility_franklin_float): what exactness costs.
 //
 // Counters: us_per_face (wall time per face), faces, segments and regions of
-// the visibility map. Wall time (UseRealTime) so any threads the engine uses
+// the visibility map; where the time goes: s_<phase> (the engine's own phase
+// timings, seconds per run) and the exact work per run (predicates,
+// predicates_exact, constructed_points, pieces), read by bench/run_all (f). Wall time (UseRealTime) so any threads the engine uses
 // are counted. Run with --benchmark_format=json > out.json for fit_exponent.py.
 #include <benchmark/benchmark.h>
 
 #include <charconv>
 #include <chrono>
 #include <cstdint>
+#include <map>
 #include <stdexcept>
 #include <string>
 
@@ -41,8 +44,10 @@ void bm_squares(benchmark::State& state, double depth, Engine engine) {
   const vismap::View view = vismap::make_view(camera, scene);
   const vismap::EngineOptions options;
 
-  std::size_t segments = 0, regions = 0, invalid = 0;
+  std::size_t segments = 0, regions = 0, invalid = 0, profiled = 0;
   double seconds = 0;  // own wall clock: Google Benchmark's inverted rates print as "s"
+  std::map<std::string, double> phases;   // summed over the runs that returned a map
+  vismap::Stats last;
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
     vismap::VisibilityMap map;
@@ -53,6 +58,11 @@ void bm_squares(benchmark::State& state, double depth, Engine engine) {
     }
     segments = map.segments.size();
     regions = map.regions.size();
+    if (!map.stats.seconds.empty()) {
+      ++profiled;
+      for (const auto& [name, t] : map.stats.seconds) phases[name] += t;
+      last = std::move(map.stats);
+    }
     benchmark::DoNotOptimize(map);
     map = {};  // free the map inside the timed region: its destruction is part of the cost
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -67,6 +77,9 @@ void bm_squares(benchmark::State& state, double depth, Engine engine) {
   state.counters["regions"] = static_cast<double>(regions);
   state.counters["D"] = depth;
   state.counters["invalid_maps"] = static_cast<double>(invalid);
+  for (const auto& [name, t] : phases) state.counters["s_" + name] = t / static_cast<double>(profiled);
+  for (const char* name : {"predicates", "predicates_exact", "constructed_points", "pieces"})
+    state.counters[name] = static_cast<double>(last.counted(name));
 }
 
 std::string number(double v) {
