@@ -88,9 +88,16 @@ struct SceneCase {
 std::vector<SceneCase> all_cases() {
   CameraSpec down;
   down.dir = Vec3{0, 0, -1};
+  CameraSpec across;
+  across.eye = Vec3{0.5, -0.6, 1.6};
+  across.target = Vec3{0.5, 0.5, 0.3};
+  across.fov_deg = 60;
   return {
       {"squares1e4", [] { return gen::random_squares_depth(10000, 10, 1980); }, down},
       {"squares1e5", [] { return gen::random_squares_depth(100000, 10, 1980); }, down},
+      // Perspective variant: far squares are smaller (eye above one side, looking across).
+      {"perspective1e4", [] { return gen::random_squares_depth(10000, 10, 1980); }, across},
+      {"terrain", [] { return gen::terrain(100, 1980); }, CameraSpec{}},   // 20000 triangles, self-occluding
       {"cubes", [] { return gen::cube_array(12); }, CameraSpec{}},      // 1728 cubes, 10368 quads
       {"sphere", [] { return gen::sphere(256, 128); }, CameraSpec{}},   // 32768 faces
       // Z-fighting: the squares of squares1e4 on 8 planes (z rounded to eighths),
@@ -290,7 +297,7 @@ std::string slurp(const std::string& path) {
 
 int usage() {
   std::fprintf(stderr,
-               "usage: bench_raster [--R 256,512,...] [--big] [--scenes squares1e4,squares1e5,cubes,sphere,coplanar1e4]\n"
+               "usage: bench_raster [--R 256,512,...] [--big] [--scenes squares1e4,squares1e5,perspective1e4,terrain,cubes,sphere,coplanar1e4]\n"
                "                    [--no-lines] [--csv FILE] [--scene FILE --map MAP.json]\n"
                "                    [--squares N,N,... [--depth D]] [--no-errors] [--no-exact]\n");
   return 2;
