@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/test_support.h"   // slurp
+
 #if defined(__SANITIZE_ADDRESS__)
 #define VISMAP_TEST_ASAN 1
 #elif defined(__has_feature)
@@ -49,13 +51,6 @@ struct Result {
   double cpu_seconds = 0;    // user + system
   std::uint64_t max_rss = 0; // bytes
 };
-
-inline std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // Starts `argv` and returns its pid; stdin from `in` ("" = /dev/null), stdout
 // and stderr to the given files.

@@ -15,25 +15,15 @@
 #include "arrangements/json_writer.h"
 #include "bench/scene_gen.h"
 #include "engine/visibility.h"
-#include "tests/checker/checker.h"
+#include "tests/test_support.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 using vismap::Vec3;
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::string report_text(const vismap_check::Report& r) {
-  std::string s;
-  for (const auto& f : r.failures) s += "  " + f + "\n";
-  return s;
-}
+using vismap_test::Case;
+using vismap_test::expect_checked;
+using vismap_test::slurp;
 
 // The map as JSON without the grid-dependent statistics.
 std::string map_json(const vismap::Scene& scene, const vismap::View& view, const vismap::EngineOptions& opt) {
@@ -42,28 +32,12 @@ std::string map_json(const vismap::Scene& scene, const vismap::View& view, const
   return vismap::to_json(map);
 }
 
-void expect_checked(const vismap::Scene& scene, const std::string& json, const vismap_check::Options& opt,
-                    const std::string& what) {
-  vismap_check::Report r = vismap_check::check_map(scene, json, opt);
-  EXPECT_TRUE(r.ok) << what << ":\n" << report_text(r);
-  EXPECT_GT(r.samples_checked, 0u) << what;
-}
-
 // ---- the degenerate corpus, end to end ----------------------------------------
-
-struct Case {
-  std::string file, args;
-};
 
 std::vector<Case> corpus() {
   std::vector<Case> cases;
-  std::ifstream in(fs::path(VISMAP_DATA_DIR) / "cases.txt");
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    auto tab = line.find('\t');
-    cases.push_back({line.substr(0, tab), tab == std::string::npos ? "" : line.substr(tab + 1)});
-  }
+  for (const std::string& line : vismap_test::case_lines(fs::path(VISMAP_DATA_DIR) / "cases.txt"))
+    cases.push_back(vismap_test::split_case(line));
   return cases;
 }
 

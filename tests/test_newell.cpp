@@ -16,19 +16,14 @@
 #include "arrangements/json_writer.h"
 #include "bench/scene_gen.h"
 #include "engine/visibility.h"
-#include "tests/checker/checker.h"
+#include "tests/test_support.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 using vismap::Vec3;
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using vismap_test::expect_checked;
+using vismap_test::slurp;
 
 // The JSON up to its statistics: the map itself (regions, segments, header).
 std::string without_stats(const std::string& json) {
@@ -45,15 +40,6 @@ std::int64_t counted(const vismap::VisibilityMap& m, const std::string& name) {
   for (const auto& [k, v] : m.stats.counts)
     if (k == name) return v;
   return -1;
-}
-
-void expect_checked(const vismap::Scene& scene, const std::string& json, const vismap_check::Options& opt,
-                    const std::string& what) {
-  vismap_check::Report r = vismap_check::check_map(scene, json, opt);
-  std::string text;
-  for (const auto& f : r.failures) text += "  " + f + "\n";
-  EXPECT_TRUE(r.ok) << what << ":\n" << text;
-  EXPECT_GT(r.samples_checked, 0u) << what;
 }
 
 // ---- scenes ----------------------------------------------------------------------
@@ -194,12 +180,7 @@ TEST_P(Corpus, NewellWritesFranklinsMap) {
 }
 
 std::vector<std::string> corpus_lines() {
-  std::vector<std::string> lines;
-  std::ifstream in(fs::path(VISMAP_DATA_DIR) / "cases.txt");
-  std::string line;
-  while (std::getline(in, line))
-    if (!line.empty() && line[0] != '#') lines.push_back(line);
-  return lines;
+  return vismap_test::case_lines(fs::path(VISMAP_DATA_DIR) / "cases.txt");
 }
 
 INSTANTIATE_TEST_SUITE_P(Degenerate, Corpus, ::testing::ValuesIn(corpus_lines()), [](const auto& info) {

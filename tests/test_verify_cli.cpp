@@ -106,14 +106,10 @@ TEST(VerifyCli, UnreadableInputIsStatusOneNamingTheFile) {
 
 TEST(VerifyCli, AcceptsTheEngineMapsOfTheCorpus) {
   TempDir dir("verify_corpus");
-  std::ifstream cases(kData / "cases.txt");
-  std::string line;
   int n = 0;
-  while (std::getline(cases, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    const auto tab = line.find('\t');
-    const std::string file = line.substr(0, tab);
-    const std::vector<std::string> args = words(tab == std::string::npos ? "" : line.substr(tab + 1));
+  for (const std::string& line : vismap_test::case_lines(kData / "cases.txt")) {
+    const auto [file, rest] = vismap_test::split_case(line);
+    const std::vector<std::string> args = words(rest);
     const std::string scene = (kData / file).string(), map = dir.file(file + ".json");
     std::vector<std::string> run = {scene, "--json", map};
     run.insert(run.end(), args.begin(), args.end());

@@ -18,12 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 const fs::path kDir = VISMAP_FUZZ_DIR;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using vismap_test::slurp;
 
 // The inputs of one target: its seed corpus and its regressions, sorted.
 std::vector<fs::path> inputs(const std::string& target) {
@@ -99,10 +94,7 @@ struct SceneCase {
 // "file<TAB>vismap options<TAB>vismap verify options" lines; '#' comments.
 std::vector<SceneCase> scene_cases(const fs::path& list) {
   std::vector<SceneCase> v;
-  std::ifstream in(list);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
+  for (const std::string& line : vismap_test::case_lines(list)) {
     SceneCase c;
     std::istringstream s(line);
     std::getline(s, c.file, '\t');
