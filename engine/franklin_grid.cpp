@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <unordered_set>
 
 namespace vismap::engine {
@@ -356,6 +357,25 @@ bool depth_crossing(const Curve& C, const Curve& D, const P2& lo, const P2& hi, 
   return true;
 }
 
+// Where segments [a, b] and [c, d] cross (they do, properly). Exact builds
+// compute it at once in GMP and keep it as a leaf: its interval is then the
+// tightest there is, so later predicates on it rarely need its exact value, and
+// when they do (equal end points in the arrangement) it is there, instead of a
+// tree of some twenty lazy nodes to evaluate.
+P2 crossing_point(const P2& a, const P2& b, const P2& c, const P2& d) {
+#ifdef VISMAP_FLOAT_KERNEL
+  const V2 u = b - a, v = d - c, w = c - a;
+  return a + ((w.x() * v.y() - w.y() * v.x()) / (u.x() * v.y() - u.y() * v.x())) * u;
+#else
+  const mpq_class ax = to_mpq(a.x()), ay = to_mpq(a.y());
+  const mpq_class ux = to_mpq(b.x()) - ax, uy = to_mpq(b.y()) - ay;
+  const mpq_class vx = to_mpq(d.x()) - to_mpq(c.x()), vy = to_mpq(d.y()) - to_mpq(c.y());
+  const mpq_class wx = to_mpq(c.x()) - ax, wy = to_mpq(c.y()) - ay;
+  const mpq_class lambda = (wx * vy - wy * vx) / (ux * vy - uy * vx);
+  return P2(from_mpq(ax + lambda * ux), from_mpq(ay + lambda * uy));
+#endif
+}
+
 struct Cutter {
   Grid& g;
   const ScreenScene& ss;
@@ -397,9 +417,7 @@ struct Cutter {
     auto o3 = CGAL::orientation(ds, dt, cs), o4 = CGAL::orientation(ds, dt, ct);
     if (o3 != CGAL::COLLINEAR && o3 == o4) return;
     if (o1 * o2 < 0 && o3 * o4 < 0) {   // proper crossing
-      V2 u = ct - cs, v = dt - ds, w = ds - cs;
-      FT lambda = (w.x() * v.y() - w.y() * v.x()) / (u.x() * v.y() - u.y() * v.x());
-      P2 p = cs + lambda * u;
+      const P2 p = crossing_point(cs, ct, ds, dt);
       ++crossings;
       cut(ci, p);
       cut(di, p);
