@@ -367,12 +367,14 @@ P2 crossing_point(const P2& a, const P2& b, const P2& c, const P2& d) {
   const V2 u = b - a, v = d - c, w = c - a;
   return a + ((w.x() * v.y() - w.y() * v.x()) / (u.x() * v.y() - u.y() * v.x())) * u;
 #else
-  const mpq_class ax = to_mpq(a.x()), ay = to_mpq(a.y());
-  const mpq_class ux = to_mpq(b.x()) - ax, uy = to_mpq(b.y()) - ay;
-  const mpq_class vx = to_mpq(d.x()) - to_mpq(c.x()), vy = to_mpq(d.y()) - to_mpq(c.y());
-  const mpq_class wx = to_mpq(c.x()) - ax, wy = to_mpq(c.y()) - ay;
-  const mpq_class lambda = (wx * vy - wy * vx) / (ux * vy - uy * vx);
-  return P2(from_mpq(ax + lambda * ux), from_mpq(ay + lambda * uy));
+  // On the kernel's exact points (no lazy coordinate nodes, no conversions).
+  using ET = K::Exact_kernel::FT;
+  const auto &ea = CGAL::exact(a), &eb = CGAL::exact(b), &ec = CGAL::exact(c), &ed = CGAL::exact(d);
+  const ET ux = eb.x() - ea.x(), uy = eb.y() - ea.y();
+  const ET vx = ed.x() - ec.x(), vy = ed.y() - ec.y();
+  const ET wx = ec.x() - ea.x(), wy = ec.y() - ea.y();
+  const ET lambda = (wx * vy - wy * vx) / (ux * vy - uy * vx);
+  return P2(FT(ET(ea.x() + lambda * ux)), FT(ET(ea.y() + lambda * uy)));
 #endif
 }
 
