@@ -51,7 +51,7 @@ LineView look_along(const Screen& sc, const P2& q, const P2& s) {
   struct Hit {   // a piece's edge (or a face's plane) over q: depth there, slope along s
     const Piece* p;
     mpq_class depth, slope;
-    int side = 0;   // diagonals: +1 the piece lies left of s, -1 right
+    int side = 0;   // edges and diagonals: +1 the piece lies left of s, -1 right
   };
   std::vector<Hit> edges, diags, covers, cuts;   // cuts: near-plane cuts (never lines)
   for (std::uint32_t pi : sc.grid.near(q)) {
