@@ -69,6 +69,7 @@
 #include <gp_Dir.hxx>
 #include <gp_Pnt.hxx>
 
+#include "bench/cpu_time.h"
 #include "bench/scene_gen.h"
 #include "engine/camera.h"
 #include "engine/visibility.h"
@@ -77,11 +78,7 @@ namespace {
 
 using namespace vismap;
 
-double cpu_now() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
+using vismap::bench::cpu_now;
 double wall_now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
@@ -173,6 +170,15 @@ Result run_vismap(const Scene& scene, const View& view) {
   return r;
 }
 
+// The visible lines' lengths and edge counts, by OCCT's three kinds (outside the timing).
+void measure_lines(Result& r, const TopoDS_Shape& sharp, const TopoDS_Shape& outline, const TopoDS_Shape& smooth) {
+  r.len_sharp = length_of(sharp);
+  r.len_outline = length_of(outline);
+  r.len_smooth = length_of(smooth);
+  r.length = r.len_sharp + r.len_outline + r.len_smooth;
+  r.edges = count_edges(sharp) + count_edges(outline) + count_edges(smooth);
+}
+
 Result run_poly(const Scene& scene, const View& view, double deflection) {
   Result r;
   Timer tb;
@@ -193,11 +199,7 @@ Result run_poly(const Scene& scene, const View& view, double deflection) {
   const TopoDS_Shape smooth = to_shape.Rg1LineVCompound();
   r.cpu = t.cpu();
   r.wall = t.wall();
-  r.len_sharp = length_of(sharp);
-  r.len_outline = length_of(outline);
-  r.len_smooth = length_of(smooth);
-  r.length = r.len_sharp + r.len_outline + r.len_smooth;
-  r.edges = count_edges(sharp) + count_edges(outline) + count_edges(smooth);
+  measure_lines(r, sharp, outline, smooth);
   return r;
 }
 
@@ -218,11 +220,7 @@ Result run_exact(const Scene& scene, const View& view) {
   const TopoDS_Shape smooth = to_shape.Rg1LineVCompound();
   r.cpu = t.cpu();
   r.wall = t.wall();
-  r.len_sharp = length_of(sharp);
-  r.len_outline = length_of(outline);
-  r.len_smooth = length_of(smooth);
-  r.length = r.len_sharp + r.len_outline + r.len_smooth;
-  r.edges = count_edges(sharp) + count_edges(outline) + count_edges(smooth);
+  measure_lines(r, sharp, outline, smooth);
   return r;
 }
 

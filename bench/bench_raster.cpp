@@ -50,6 +50,7 @@
 
 #include "bench/raster/exact_error.h"
 #include "bench/raster/raster.h"
+#include "bench/cpu_time.h"
 #include "bench/scene_gen.h"
 #include "engine/camera.h"
 #include "engine/scene.h"
@@ -59,11 +60,7 @@ namespace {
 
 using namespace vismap;
 
-double cpu_now() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
+using vismap::bench::cpu_now;
 
 // Best CPU time of fn over runs, at least one run, more while the total stays
 // under `budget` seconds (at most `max_runs`).

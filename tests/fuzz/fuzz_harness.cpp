@@ -15,12 +15,6 @@
 namespace vismap_fuzz {
 namespace {
 
-[[noreturn]] void die(const std::string& why) {
-  std::fprintf(stderr, "\n*** vismap fuzz finding: %s\n", why.c_str());
-  std::fflush(stderr);
-  std::abort();
-}
-
 std::string num(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.17g", v);

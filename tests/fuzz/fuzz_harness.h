@@ -13,6 +13,9 @@
 
 namespace vismap_fuzz {
 
+// A finding: prints why on stderr and aborts (libFuzzer keeps the input).
+[[noreturn]] void die(const std::string& why);
+
 // A reader on arbitrary bytes: InputError, or a Scene that is consistent
 // (finite coordinates, every face with >= 3 corners, all indices in range).
 void check_reader(const std::uint8_t* data, std::size_t size, const std::string& format);

@@ -7,15 +7,12 @@
 #include "tests/fuzz/fuzz_harness.h"
 
 namespace vismap_fuzz {
-namespace {
 
-[[noreturn]] void die(const std::string& why) {
+void die(const std::string& why) {
   std::fprintf(stderr, "\n*** vismap fuzz finding: %s\n", why.c_str());
   std::fflush(stderr);
   std::abort();
 }
-
-}  // namespace
 
 void check_reader(const std::uint8_t* data, std::size_t size, const std::string& format) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
