@@ -11,7 +11,8 @@ VISMAP_KERNEL_BEGIN
 
 struct MapPiece {
   exact::P2 a, b;                    // a != b
-  exact::FT za, zb;                  // depth at a and b (for coincident lines)
+  const exact::P3 *s = nullptr, *t = nullptr;   // its line with depths (two points of it),
+                                     // which ranks coincident lines
   int left = -1, right = -1;         // nearest face left / right of a -> b (-1: none)
   bool drawn = false;                // a visible line
   EdgeKind kind = EdgeKind::Border;
@@ -24,6 +25,12 @@ struct MapPiece {
 // and segments in canonical order into `map`. Throws std::logic_error if the
 // labels are inconsistent (a bug, never bad input).
 void build_map(std::vector<MapPiece>& pieces, VisibilityMap& map);
+
+// The same map from pieces that meet only at their end points (no piece crosses
+// or partly overlaps another; pieces on the same two end points are merged),
+// without a sweep: Franklin's pieces, which step 8 cut at every crossing. Throws
+// std::logic_error where the pieces break that promise in a way it detects.
+void assemble_map(std::vector<MapPiece>& pieces, VisibilityMap& map);
 
 VISMAP_KERNEL_END
 

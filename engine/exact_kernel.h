@@ -82,5 +82,13 @@ struct P3 {
   const P2& xy() const { return p; }
 };
 
+// Depth at screen point p on the line from s to t (depth is affine along a
+// screen line), interpolated along the line's dominant screen axis.
+inline FT depth_along(const P3& s, const P3& t, const P2& p) {
+  const bool use_x = CGAL::compare(CGAL::abs(t.x - s.x), CGAL::abs(t.y - s.y)) != CGAL::SMALLER;
+  const FT lambda = use_x ? (p.x() - s.x) / (t.x - s.x) : (p.y() - s.y) / (t.y - s.y);
+  return s.z + lambda * (t.z - s.z);
+}
+
 VISMAP_KERNEL_END
 }  // namespace vismap::exact

@@ -66,10 +66,9 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   mp.reserve(pieces.size());
   for (const VisiblePiece& p : pieces) {
     const Curve& c = ss.curves[p.curve];
-    mp.push_back(MapPiece{p.a, p.b, depth_on(c, p.a), depth_on(c, p.b), p.left, p.right, p.visible, c.kind,
-                          &c.faces, c.order_face});
+    mp.push_back(MapPiece{p.a, p.b, &c.s, &c.t, p.left, p.right, p.visible, c.kind, &c.faces, c.order_face});
   }
-  build_map(mp, map);
+  assemble_map(mp, map);
 #endif
   st.time("arrangement", clock.lap());
   st.count("visible_segments", static_cast<std::int64_t>(map.segments.size()));

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 #include <unordered_set>
 
 namespace vismap::engine {
@@ -383,6 +384,7 @@ struct Cutter {
   std::vector<std::vector<P2>>& cuts;
   int ix, iy;
   std::int64_t pairs = 0, crossings = 0;
+  std::vector<std::pair<int, int>> overlaps;   // collinear curves sharing more than a point
 
   void cut(int c, const P2& p) {
     if (in_cell(g, ix, iy, p)) cuts[c].push_back(p);
@@ -408,6 +410,7 @@ struct Cutter {
       const P2 p = ps ? cs : ct, a = ps ? ct : cs;
       const P2 b = (same(C.vs, D.vs) || same(C.vt, D.vs)) ? dt : ds;
       if (CGAL::orientation(p, a, b) != CGAL::COLLINEAR || !CGAL::is_positive((a - p) * (b - p))) return;
+      overlaps.emplace_back(ci, di);
       if (strictly_within(C, b)) cut(ci, b);
       else if (strictly_within(D, a)) cut(di, a);
       return;
@@ -458,12 +461,54 @@ struct Cutter {
     if (!(lo < hi)) return;
     auto inside = [](const P2& a, const P2& b, const P2& p) { return CGAL::collinear_are_ordered_along_line(a, p, b); };
     if (!(inside(cs, ct, lo) && inside(cs, ct, hi) && inside(ds, dt, lo) && inside(ds, dt, hi))) return;
+    overlaps.emplace_back(ci, di);
     for (const P2& p : {ds, dt}) if (strictly_within(C, p)) cut(ci, p);
     for (const P2& p : {cs, ct}) if (strictly_within(D, p)) cut(di, p);
     P2 x;
     if (depth_crossing(C, D, lo, hi, x)) { cut(ci, x); cut(di, x); ++crossings; }
   }
 };
+
+// Collinear curves that overlap are cut at the same points, so that their pieces
+// coincide where they overlap (the map is assembled from pieces that meet only at
+// their end points): each gets the cuts and end points of the curves it overlaps,
+// directly or through others on the same line, that lie inside it. A cut made on
+// one of them alone (where it pierces a plane, or where it crosses a third
+// collinear curve in depth) would otherwise be missing on the others.
+void share_overlap_cuts(const ScreenScene& ss, std::vector<std::pair<int, int>>& overlaps,
+                        std::vector<std::vector<P2>>& cuts) {
+  if (overlaps.empty()) return;
+  std::sort(overlaps.begin(), overlaps.end());
+  overlaps.erase(std::unique(overlaps.begin(), overlaps.end()), overlaps.end());
+  std::unordered_map<int, int> parent;
+  auto find = [&](int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (const auto& [c, d] : overlaps) { parent.try_emplace(c, c); parent.try_emplace(d, d); }
+  for (const auto& [c, d] : overlaps) parent[find(c)] = find(d);
+  std::vector<std::pair<int, int>> members;   // (line, curve)
+  for (const auto& [c, unused] : parent) members.emplace_back(find(c), c);
+  std::sort(members.begin(), members.end());
+  std::vector<P2> points;
+  for (std::size_t k = 0; k < members.size();) {
+    std::size_t l = k;
+    points.clear();
+    for (; l < members.size() && members[l].first == members[k].first; ++l) {
+      const Curve& C = ss.curves[members[l].second];
+      points.insert(points.end(), cuts[members[l].second].begin(), cuts[members[l].second].end());
+      points.push_back(C.s.xy());
+      points.push_back(C.t.xy());
+    }
+    for (std::size_t m = k; m < l; ++m) {
+      const int ci = members[m].second;
+      const Curve& C = ss.curves[ci];
+      for (const P2& p : points)
+        if (CGAL::collinear_are_strictly_ordered_along_line(C.s.xy(), p, C.t.xy())) cuts[ci].push_back(p);
+    }
+    k = l;
+  }
+}
 
 }  // namespace
 
@@ -487,8 +532,10 @@ std::vector<std::vector<P2>> cut_curves(Grid& g, const ScreenScene& ss, Stats& s
         if (cell.blocker >= 0) cutter.pierce(ci, cell.blocker);
       }
     }
+  share_overlap_cuts(ss, cutter.overlaps, cuts);
   stats.count("edge_pairs_tested", cutter.pairs);
   stats.count("intersections", cutter.crossings);
+  stats.count("overlapping_curve_pairs", static_cast<std::int64_t>(cutter.overlaps.size()));
   return cuts;
 }
 

@@ -475,7 +475,6 @@ std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Frag
     pts.insert(pts.begin(), Cut{s, true});
     pts.push_back(Cut{t, true});
     bool extend = false;   // out.back() is this curve's previous piece
-    const std::size_t first = out.size();
     for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
       ++pieces;
       const P2 m = CGAL::midpoint(pts[k].p, pts[k + 1].p);
@@ -529,12 +528,10 @@ std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Frag
       mp.kind = cv.kind;
       mp.faces = &cv.faces;
       mp.order_face = cv.order_face;
+      mp.s = &cv.s;
+      mp.t = &cv.t;
       out.push_back(std::move(mp));
       extend = true;
-    }
-    for (std::size_t k = first; k < out.size(); ++k) {   // depths at the ends, for coincident lines
-      out[k].za = depth_on(cv, out[k].a);
-      out[k].zb = depth_on(cv, out[k].b);
     }
   }
   stats.count("pieces", pieces);

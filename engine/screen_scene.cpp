@@ -52,12 +52,7 @@ bool is_crease(const std::array<FT, 3>& n1, const std::array<FT, 3>& n2, double 
 
 }  // namespace
 
-FT depth_on(const Curve& c, const P2& p) {
-  // Interpolate along the dominant screen axis of the curve.
-  const bool use_x = CGAL::compare(CGAL::abs(c.t.x - c.s.x), CGAL::abs(c.t.y - c.s.y)) != CGAL::SMALLER;
-  FT lambda = use_x ? (p.x() - c.s.x) / (c.t.x - c.s.x) : (p.y() - c.s.y) / (c.t.y - c.s.y);
-  return c.s.z + lambda * (c.t.z - c.s.z);
-}
+FT depth_on(const Curve& c, const P2& p) { return depth_along(c.s, c.t, p); }
 
 ScreenScene make_screen_scene(const Scene& scene, const View& view, const EngineOptions& opt,
                               Stats& stats) {

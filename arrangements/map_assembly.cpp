@@ -1,0 +1,354 @@
+// Step 10 without a sweep: Franklin's pieces already meet only at their end
+// points (every crossing, T-junction and overlap end was cut in step 8), so the
+// plane graph is assembled directly. Equal end points are found by sorting (most
+// are the very same point object, so no exact value is needed), edges are sorted
+// around each vertex with filtered orientation tests, faces are traced, and each
+// connected component is placed in the face below its lowest-leftmost vertex by
+// one vertical ray. No segment intersection is ever computed.
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+#include "arrangements/map_graph.h"
+
+namespace vismap {
+VISMAP_KERNEL_BEGIN
+namespace {
+
+using namespace exact;
+
+[[noreturn]] void broken(const char* what) {
+  throw std::logic_error(std::string("visibility map: ") + what + " (engine bug)");
+}
+
+const CGAL::Simple_cartesian<Interval>::Point_2& approx_point(const P2& p) { return p.approx(); }
+
+// Vertices: the distinct end points, numbered in lexicographic order.
+std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, std::vector<P2>& points) {
+  struct End {
+    Interval x, y;
+    const P2* p;
+    int at;   // 2 * piece + (0: a, 1: b)
+  };
+  std::vector<End> ends;
+  ends.reserve(2 * pieces.size());
+  for (std::size_t i = 0; i < pieces.size(); ++i)
+    for (int k = 0; k < 2; ++k) {
+      const P2& p = k == 0 ? pieces[i].a : pieces[i].b;
+      ends.push_back(End{approx_point(p).x(), approx_point(p).y(), &p, static_cast<int>(2 * i + k)});
+    }
+  auto compare = [](const End& a, const End& b) {
+    if (a.x.sup() < b.x.inf()) return CGAL::SMALLER;
+    if (b.x.sup() < a.x.inf()) return CGAL::LARGER;
+    if (CGAL::identical(*a.p, *b.p)) return CGAL::EQUAL;
+    return CGAL::compare_xy(*a.p, *b.p);
+  };
+  std::sort(ends.begin(), ends.end(), [&](const End& a, const End& b) { return compare(a, b) == CGAL::SMALLER; });
+  std::vector<int> vertex_of(ends.size());
+  for (std::size_t k = 0; k < ends.size(); ++k) {
+    if (k == 0 || compare(ends[k - 1], ends[k]) != CGAL::EQUAL) points.push_back(*ends[k].p);
+    vertex_of[ends[k].at] = static_cast<int>(points.size()) - 1;
+  }
+  return vertex_of;
+}
+
+// sign(y of edge 1 - y of edge 2) at x, both edges spanning x (u.x < x < v.x).
+CGAL::Sign compare_y_at(const P2& x, const P2& u1, const P2& v1, const P2& u2, const P2& v2) {
+  return filtered_sign(
+      [&] {
+        const auto &X = approx_point(x), &U1 = approx_point(u1), &V1 = approx_point(v1), &U2 = approx_point(u2),
+                   &V2 = approx_point(v2);
+        const Interval d1 = V1.x() - U1.x(), d2 = V2.x() - U2.x();
+        const Interval n1 = U1.y() * d1 + (X.x() - U1.x()) * (V1.y() - U1.y());
+        const Interval n2 = U2.y() * d2 + (X.x() - U2.x()) * (V2.y() - U2.y());
+        return n1 * d2 - n2 * d1;
+      },
+      [&]() -> mpq_class {
+        const auto &X = CGAL::exact(x), &U1 = CGAL::exact(u1), &V1 = CGAL::exact(v1), &U2 = CGAL::exact(u2),
+                   &V2 = CGAL::exact(v2);
+        const mpq_class d1 = to_mpq(V1.x()) - to_mpq(U1.x()), d2 = to_mpq(V2.x()) - to_mpq(U2.x());
+        const mpq_class n1 = to_mpq(U1.y()) * d1 + (to_mpq(X.x()) - to_mpq(U1.x())) * (to_mpq(V1.y()) - to_mpq(U1.y()));
+        const mpq_class n2 = to_mpq(U2.y()) * d2 + (to_mpq(X.x()) - to_mpq(U2.x())) * (to_mpq(V2.y()) - to_mpq(U2.y()));
+        return n1 * d2 - n2 * d1;
+      });
+}
+
+struct Assembly {
+  MapGraph& g;
+  int nverts = 0, nhalf = 0;
+  std::vector<int> first;      // vertex -> its outgoing halfedges rot[first[w] .. first[w+1])
+  std::vector<int> rot;        // counter-clockwise from angle 0 (the +x direction)
+  std::vector<int> pos;        // halfedge -> its index in rot
+  std::vector<char> upper;     // halfedge -> direction in [0, pi): dy > 0, or dy = 0 and dx > 0
+  std::vector<int> cycle;      // halfedge -> boundary cycle
+  std::vector<char> positive;  // cycle -> counter-clockwise (the outer boundary of a bounded face)
+
+  int source(int h) const { return g.ends[h >> 1][h & 1]; }
+  int target(int h) const { return g.ends[h >> 1][(h & 1) ^ 1]; }
+  const P2& at(int w) const { return g.points[w]; }
+
+  // Edges around each vertex, counter-clockwise; then each halfedge's next.
+  void sort_around_vertices() {
+    nverts = static_cast<int>(g.points.size());
+    nhalf = static_cast<int>(2 * g.ends.size());
+    first.assign(nverts + 1, 0);
+    for (int h = 0; h < nhalf; ++h) ++first[source(h) + 1];
+    std::partial_sum(first.begin(), first.end(), first.begin());
+    rot.resize(nhalf);
+    std::vector<int> fill(first.begin(), first.end() - 1);
+    for (int h = 0; h < nhalf; ++h) rot[fill[source(h)]++] = h;
+    upper.resize(nhalf);
+    for (int h = 0; h < nhalf; ++h) {
+      const CGAL::Comparison_result dy = CGAL::compare_y(at(target(h)), at(source(h)));
+      upper[h] = dy == CGAL::LARGER || (dy == CGAL::EQUAL && target(h) > source(h));
+    }
+    for (int w = 0; w < nverts; ++w) {
+      auto before = [&](int h1, int h2) {
+        if (upper[h1] != upper[h2]) return upper[h1] > upper[h2];
+        const CGAL::Orientation o = CGAL::orientation(at(w), at(target(h1)), at(target(h2)));
+        if (o == CGAL::COLLINEAR && h1 != h2) broken("overlapping pieces with different end points");
+        return o == CGAL::LEFT_TURN;
+      };
+      std::sort(rot.begin() + first[w], rot.begin() + first[w + 1], before);
+    }
+    pos.resize(nhalf);
+    for (int w = 0; w < nverts; ++w)
+      for (int k = first[w]; k < first[w + 1]; ++k) pos[rot[k]] = k - first[w];
+    // Face on the left: arriving at w along h, leave along the edge just
+    // clockwise of the way back.
+    g.next.resize(nhalf);
+    for (int h = 0; h < nhalf; ++h) {
+      const int w = target(h), deg = first[w + 1] - first[w], back = pos[h ^ 1];
+      g.next[h] = rot[first[w] + (back == 0 ? deg - 1 : back - 1)];
+    }
+  }
+
+  // Boundary cycles, and which are counter-clockwise (signed area > 0: on
+  // intervals, exactly where they cannot tell).
+  void trace_cycles() {
+    cycle.assign(nhalf, -1);
+    for (int h0 = 0; h0 < nhalf; ++h0) {
+      if (cycle[h0] >= 0) continue;
+      const int c = static_cast<int>(positive.size());
+      Interval area = 0;
+      {
+        CGAL::Protect_FPU_rounding<true> upward;
+        int h = h0;
+        do {
+          cycle[h] = c;
+          const auto &p = approx_point(at(source(h))), &q = approx_point(at(target(h)));
+          area += p.x() * q.y() - q.x() * p.y();
+          h = g.next[h];
+        } while (h != h0);
+      }
+      bool pos_area = area.inf() > 0;
+      if (area.inf() <= 0 && area.sup() > 0) {
+        ++filter_counts.exact;
+        mpq_class s = 0;
+        int h = h0;
+        do {
+          const auto &p = CGAL::exact(at(source(h))), &q = CGAL::exact(at(target(h)));
+          s += to_mpq(p.x()) * to_mpq(q.y()) - to_mpq(q.x()) * to_mpq(p.y());
+          h = g.next[h];
+        } while (h != h0);
+        pos_area = sgn(s) > 0;
+      }
+      positive.push_back(pos_area);
+    }
+  }
+
+  // The outgoing halfedge at w whose face holds the directions just
+  // counter-clockwise of it up to `dir` (the last one before `dir`, cyclically).
+  // dir: +y (up) or -x (left).
+  int halfedge_before(int w, bool up) const {
+    int found = rot[first[w + 1] - 1];
+    for (int k = first[w]; k < first[w + 1]; ++k) {
+      const int h = rot[k];
+      if (!upper[h]) break;
+      if (up && CGAL::compare_x(at(target(h)), at(w)) != CGAL::LARGER) break;
+      found = h;
+    }
+    return found;
+  }
+};
+
+// Vertical ray shooting: edges by columns of x (doubles), each edge in every
+// column its x-range meets.
+struct Columns {
+  double x0 = 0, width = 1;
+  int n = 1;
+  std::vector<int> first, edges;
+
+  int column(double x) const { return std::clamp(static_cast<int>(std::floor((x - x0) / width)), 0, n - 1); }
+
+  explicit Columns(const MapGraph& g) {
+    const std::size_t E = g.ends.size();
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    for (const P2& p : g.points) {
+      lo = std::min(lo, approx_point(p).x().inf());
+      hi = std::max(hi, approx_point(p).x().sup());
+    }
+    n = static_cast<int>(std::clamp(std::sqrt(static_cast<double>(E)), 1.0, 65536.0));
+    x0 = lo;
+    width = hi > lo ? (hi - lo) / n : 1;
+    auto range = [&](std::size_t e, int& c0, int& c1) {
+      c0 = column(approx_point(g.points[g.ends[e][0]]).x().inf());
+      c1 = column(approx_point(g.points[g.ends[e][1]]).x().sup());
+    };
+    first.assign(n + 1, 0);
+    for (std::size_t e = 0; e < E; ++e) {
+      int c0, c1;
+      range(e, c0, c1);
+      for (int c = c0; c <= c1; ++c) ++first[c + 1];
+    }
+    std::partial_sum(first.begin(), first.end(), first.begin());
+    edges.resize(first[n]);
+    std::vector<int> fill(first.begin(), first.end() - 1);
+    for (std::size_t e = 0; e < E; ++e) {
+      int c0, c1;
+      range(e, c0, c1);
+      for (int c = c0; c <= c1; ++c) edges[fill[c]++] = static_cast<int>(e);
+    }
+  }
+};
+
+// The halfedge whose face lies directly below w (-1: the unbounded face), w being
+// the lowest-leftmost vertex of its component (so no edge of its own is below it).
+int face_below(const Assembly& a, const Columns& cols, int w) {
+  const MapGraph& g = a.g;
+  const P2& p = g.points[w];
+  const Interval px = approx_point(p).x();
+  int best_vertex = -1, best_edge = -1;
+  // Is vertex q above the best hit so far?
+  auto vertex_higher = [&](int q) {
+    if (best_vertex >= 0) return CGAL::compare_y(g.points[q], g.points[best_vertex]) == CGAL::LARGER;
+    if (best_edge >= 0) {
+      const auto o = CGAL::orientation(g.points[g.ends[best_edge][0]], g.points[g.ends[best_edge][1]], g.points[q]);
+      if (o == CGAL::COLLINEAR) broken("a vertex inside an edge");
+      return o == CGAL::LEFT_TURN;
+    }
+    return true;
+  };
+  auto edge_higher = [&](int e) {
+    const P2 &u = g.points[g.ends[e][0]], &v = g.points[g.ends[e][1]];
+    if (best_vertex >= 0) {
+      const auto o = CGAL::orientation(u, v, g.points[best_vertex]);
+      if (o == CGAL::COLLINEAR) broken("a vertex inside an edge");
+      return o == CGAL::RIGHT_TURN;
+    }
+    if (best_edge >= 0) {
+      const P2 &u2 = g.points[g.ends[best_edge][0]], &v2 = g.points[g.ends[best_edge][1]];
+      const CGAL::Sign s = compare_y_at(p, u, v, u2, v2);
+      if (s == CGAL::ZERO) broken("crossing pieces");
+      return s == CGAL::POSITIVE;
+    }
+    return true;
+  };
+  const int c0 = cols.column(px.inf()), c1 = cols.column(px.sup());
+  for (int c = c0; c <= c1; ++c)
+    for (int k = cols.first[c]; k < cols.first[c + 1]; ++k) {
+      const int e = cols.edges[k];
+      if (e == best_edge) continue;   // listed in both columns
+      const int iu = g.ends[e][0], iv = g.ends[e][1];
+      const P2 &u = g.points[iu], &v = g.points[iv];
+      if (approx_point(u).x().inf() > px.sup() || approx_point(v).x().sup() < px.inf()) continue;
+      const auto cu = CGAL::compare_x(u, p), cv = CGAL::compare_x(v, p);
+      if (cu == CGAL::LARGER || cv == CGAL::SMALLER) continue;
+      int q = -1;   // the hit is a vertex (the edge's highest point at p.x)
+      if (cv == CGAL::EQUAL) q = iv;
+      else if (cu == CGAL::EQUAL) q = iu;
+      if (q >= 0) {
+        if (CGAL::compare_y(g.points[q], p) == CGAL::SMALLER && vertex_higher(q)) { best_vertex = q; best_edge = -1; }
+        continue;
+      }
+      const auto o = CGAL::orientation(u, v, p);
+      if (o == CGAL::COLLINEAR) broken("a vertex inside an edge");
+      if (o == CGAL::LEFT_TURN && edge_higher(e)) { best_edge = e; best_vertex = -1; }
+    }
+  if (best_vertex >= 0) return a.halfedge_before(best_vertex, true);
+  if (best_edge >= 0) return 2 * best_edge;   // left to right: the face above is on its left
+  return -1;
+}
+
+struct UnionFind {
+  std::vector<int> p;
+  explicit UnionFind(std::size_t n) : p(n) { std::iota(p.begin(), p.end(), 0); }
+  int find(int x) { while (p[x] != x) x = p[x] = p[p[x]]; return x; }
+  void join(int a, int b) { p[find(a)] = find(b); }
+};
+
+}  // namespace
+
+void assemble_map(std::vector<MapPiece>& pieces, VisibilityMap& map) {
+  MapGraph g;
+  std::vector<int> vertex_of = number_end_points(pieces, g.points);
+
+  // Edges: pieces from the smaller end, those on the same two vertices merged.
+  std::vector<int> order(pieces.size());
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    MapPiece& m = pieces[i];
+    int &u = vertex_of[2 * i], &v = vertex_of[2 * i + 1];
+    if (u == v) broken("a piece of length zero");
+    if (v < u) { std::swap(m.a, m.b); std::swap(m.left, m.right); std::swap(u, v); }
+    order[i] = static_cast<int>(i);
+  }
+  auto key = [&](int i) { return std::pair(vertex_of[2 * i], vertex_of[2 * i + 1]); };
+  std::sort(order.begin(), order.end(), [&](int i, int j) { return key(i) < key(j); });
+  for (std::size_t k = 0; k < order.size();) {
+    std::size_t l = k + 1;
+    while (l < order.size() && key(order[l]) == key(order[k])) ++l;
+    const auto [u, v] = key(order[k]);
+    g.ends.push_back({u, v});
+    g.attrs.push_back(edge_attr(pieces, &order[k], l - k, g.points[u], g.points[v]));
+    k = l;
+  }
+
+  Assembly a{g};
+  a.sort_around_vertices();
+  a.trace_cycles();
+
+  // Components, each with its lowest-leftmost vertex (the smallest number) and
+  // its outer cycle: the one whose face holds the directions to the left there.
+  UnionFind comp(g.points.size());
+  for (const auto& [u, v] : g.ends) comp.join(u, v);
+  std::vector<int> outer_cycles;   // per component, in order of their lowest vertex
+  std::vector<int> lowest;
+  std::vector<char> seen(g.points.size(), 0);
+  for (int w = 0; w < a.nverts; ++w) {
+    const int r = comp.find(w);
+    if (seen[r]) continue;
+    seen[r] = 1;
+    const int c = a.cycle[a.halfedge_before(w, false)];
+    if (a.positive[c]) broken("a component whose outside turns counter-clockwise");
+    outer_cycles.push_back(c);
+    lowest.push_back(w);
+  }
+  const std::size_t ncycles = a.positive.size();
+  const std::size_t npositive = static_cast<std::size_t>(std::count(a.positive.begin(), a.positive.end(), 1));
+  if (ncycles - npositive != outer_cycles.size()) broken("pieces crossing between their end points");
+
+  // Faces: one per counter-clockwise cycle, plus the unbounded one; each
+  // component's outer cycle lies in the face below its lowest vertex. (That face
+  // is found on a component whose lowest vertex comes earlier, so in this order
+  // it is known.)
+  std::vector<int> face_of(ncycles, -1);
+  for (std::size_t c = 0; c < ncycles; ++c)
+    if (a.positive[c]) face_of[c] = g.faces++;
+  g.unbounded = g.faces++;
+  if (!outer_cycles.empty()) {
+    const Columns cols(g);
+    for (std::size_t k = 0; k < outer_cycles.size(); ++k) {
+      const int h = face_below(a, cols, lowest[k]);
+      const int f = h < 0 ? g.unbounded : face_of[a.cycle[h]];
+      if (f < 0) broken("a face found out of order");
+      face_of[outer_cycles[k]] = f;
+    }
+  }
+  g.face.resize(a.nhalf);
+  for (int h = 0; h < a.nhalf; ++h) g.face[h] = face_of[a.cycle[h]];
+  write_canonical(g, map);
+}
+
+VISMAP_KERNEL_END
+}  // namespace vismap

@@ -1,0 +1,225 @@
+#include <algorithm>
+#include <climits>
+#include <numeric>
+#include <stdexcept>
+
+#include "arrangements/map_graph.h"
+
+namespace vismap {
+VISMAP_KERNEL_BEGIN
+namespace {
+
+using namespace exact;
+
+struct UnionFind {
+  std::vector<int> p;
+  explicit UnionFind(std::size_t n) : p(n) { std::iota(p.begin(), p.end(), 0); }
+  int find(int x) { while (p[x] != x) x = p[x] = p[p[x]]; return x; }
+  void join(int a, int b) { p[find(a)] = find(b); }
+};
+
+FT depth_at(const MapPiece& m, const P2& p) { return depth_along(*m.s, *m.t, p); }
+
+// Canonical start: the rotation that is lexicographically smallest (vertex
+// numbers follow the points' lexicographic order).
+void rotate_canonical(std::vector<int>& ring) {
+  std::size_t best = 0;
+  const std::size_t n = ring.size();
+  for (std::size_t i = 1; i < n; ++i) {
+    for (std::size_t k = 0; k < n; ++k) {
+      const int a = ring[(i + k) % n], b = ring[(best + k) % n];
+      if (a < b) { best = i; break; }
+      if (b < a) break;
+    }
+  }
+  std::rotate(ring.begin(), ring.begin() + static_cast<std::ptrdiff_t>(best), ring.end());
+}
+
+}  // namespace
+
+EdgeAttr edge_attr(const std::vector<MapPiece>& pieces, const int* on_edge, std::size_t count, const P2& a,
+                   const P2& b) {
+  EdgeAttr at;
+  const MapPiece& any = pieces[on_edge[0]];
+  at.left = any.left;
+  at.right = any.right;
+  int winner = -1;
+  P2 mid;
+  bool have_mid = false;
+  for (std::size_t k = 0; k < count; ++k) {
+    const int pi = on_edge[k];
+    const MapPiece& m = pieces[pi];
+    if (!m.drawn) continue;
+    if (winner < 0) { winner = pi; continue; }
+    if (!have_mid) { mid = CGAL::midpoint(a, b); have_mid = true; }
+    const MapPiece& w = pieces[winner];
+    auto c = CGAL::compare(depth_at(m, mid), depth_at(w, mid));
+    // Ties in (depth, lowest face index), e.g. two intersection lines of one face
+    // along one 3D line: the faces lists, lexicographically, so that the written
+    // segment does not depend on the order the pieces came in.
+    if (c == CGAL::SMALLER ||
+        (c == CGAL::EQUAL && (m.order_face < w.order_face ||
+                              (m.order_face == w.order_face && *m.faces < *w.faces))))
+      winner = pi;
+  }
+  if (winner >= 0) {
+    at.drawn = true;
+    at.kind = pieces[winner].kind;
+    at.faces = pieces[winner].faces;
+  }
+  return at;
+}
+
+void write_canonical(const MapGraph& g, VisibilityMap& map) {
+  const int nedges = static_cast<int>(g.ends.size());
+  const int nhalf = 2 * nedges;
+  const int nverts = static_cast<int>(g.points.size());
+  auto source = [&](int h) { return g.ends[h >> 1][h & 1]; };
+  auto target = [&](int h) { return g.ends[h >> 1][(h & 1) ^ 1]; };
+
+  // Face labels from the halfedges around them; they must all agree.
+  std::vector<int> label(g.faces, INT_MIN);
+  if (g.unbounded >= 0) label[g.unbounded] = -1;
+  for (int h = 0; h < nhalf; ++h) {
+    const EdgeAttr& a = g.attrs[h >> 1];
+    const int x = (h & 1) == 0 ? a.left : a.right;
+    int& l = label[g.face[h]];
+    if (l == INT_MIN) l = x;
+    else if (l != x) throw std::logic_error("visibility map: inconsistent face labels (engine bug)");
+  }
+
+  // Each vertex's degree and (for those of degree 2) its two edges.
+  std::vector<int> degree(nverts, 0), two(2 * static_cast<std::size_t>(nverts), -1);
+  for (int e = 0; e < nedges; ++e)
+    for (int w : g.ends[e]) {
+      if (degree[w] < 2) two[2 * w + degree[w]] = e;
+      ++degree[w];
+    }
+  auto other_end = [&](int e, int w) { return g.ends[e][0] == w ? g.ends[e][1] : g.ends[e][0]; };
+
+  // A vertex where two collinear edges of the same attributes meet is not a vertex.
+  std::vector<char> essential(nverts, 1);
+  for (int w = 0; w < nverts; ++w)
+    if (degree[w] == 2) {
+      const int e1 = two[2 * w], e2 = two[2 * w + 1];
+      essential[w] = !(g.attrs[e1].same_as(g.attrs[e2]) &&
+                       CGAL::orientation(g.points[other_end(e1, w)], g.points[w], g.points[other_end(e2, w)]) ==
+                           CGAL::COLLINEAR);
+    }
+  // Exact coordinates of the vertices written, on first need.
+  std::vector<Point2> exact_point(nverts);
+  std::vector<char> have(nverts, 0);
+  auto point = [&](int w) -> const Point2& {
+    if (!have[w]) {
+      const auto& e = CGAL::exact(g.points[w]);
+      exact_point[w] = Point2{to_mpq(e.x()), to_mpq(e.y())};
+      have[w] = 1;
+    }
+    return exact_point[w];
+  };
+
+  // Regions: faces of one label joined across edges that separate nothing.
+  // Rings are kept as vertex numbers until the end.
+  UnionFind groups(g.faces);
+  for (int e = 0; e < nedges; ++e)
+    if (label[g.face[2 * e]] == label[g.face[2 * e + 1]]) groups.join(g.face[2 * e], g.face[2 * e + 1]);
+  auto boundary = [&](int h) { return label[g.face[h]] != label[g.face[h ^ 1]]; };
+  struct Rings {
+    int face = -1;
+    std::vector<int> outer;
+    std::vector<std::vector<int>> holes;
+  };
+  std::vector<int> slot(g.faces, -1);   // group -> index in `found`
+  std::vector<Rings> found;
+  std::vector<char> visited(nhalf, 0);
+  std::vector<int> ring;
+  for (int h0 = 0; h0 < nhalf; ++h0) {
+    const int lab = label[g.face[h0]];
+    if (lab < 0 || !boundary(h0) || visited[h0]) continue;
+    ring.clear();
+    // Counter-clockwise (an outer ring) when its signed area is positive: on
+    // intervals, exactly where they cannot tell.
+    Interval area = 0;
+    {
+      CGAL::Protect_FPU_rounding<true> upward;
+      int h = h0;
+      do {
+        visited[h] = 1;
+        if (essential[source(h)]) ring.push_back(source(h));
+        const auto &p = g.points[source(h)].approx(), &q = g.points[target(h)].approx();
+        area += p.x() * q.y() - q.x() * p.y();
+        int nx = g.next[h];
+        while (!boundary(nx)) nx = g.next[nx ^ 1];   // step over edges inside the region
+        h = nx;
+      } while (h != h0);
+    }
+    bool outer = area.inf() > 0;
+    if (area.inf() <= 0 && area.sup() > 0) {
+      mpq_class s2 = 0;
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        const Point2 &p = point(ring[i]), &q = point(ring[(i + 1) % ring.size()]);
+        s2 += p.x * q.y - q.x * p.y;
+      }
+      outer = sgn(s2) > 0;
+    }
+    int& k = slot[groups.find(g.face[h0])];
+    if (k < 0) { k = static_cast<int>(found.size()); found.emplace_back(); }
+    Rings& r = found[k];
+    r.face = lab;
+    rotate_canonical(ring);
+    if (outer) {
+      if (!r.outer.empty()) throw std::logic_error("visibility map: region with two outer rings (engine bug)");
+      r.outer = ring;
+    } else {
+      r.holes.push_back(ring);
+    }
+  }
+  for (Rings& r : found) {
+    if (r.outer.empty()) throw std::logic_error("visibility map: region without outer ring (engine bug)");
+    std::sort(r.holes.begin(), r.holes.end());
+  }
+  std::sort(found.begin(), found.end(), [](const Rings& a, const Rings& b) {
+    if (a.face != b.face) return a.face < b.face;
+    return a.outer < b.outer;
+  });
+  auto points_of = [&](const std::vector<int>& ids) {
+    std::vector<Point2> pts;
+    pts.reserve(ids.size());
+    for (int w : ids) pts.push_back(point(w));
+    return pts;
+  };
+  map.regions.reserve(found.size());
+  for (const Rings& r : found) {
+    Region out;
+    out.face = r.face;
+    out.outer = points_of(r.outer);
+    for (const auto& hole : r.holes) out.holes.push_back(points_of(hole));
+    map.regions.push_back(std::move(out));
+  }
+
+  // Segments: maximal chains of drawn edges through superfluous vertices, each
+  // walked from its smaller end (halfedges 2e run that way).
+  struct Chain {
+    int from, to, edge;
+  };
+  std::vector<Chain> chains;
+  for (int e = 0; e < nedges; ++e) {
+    const EdgeAttr& a = g.attrs[e];
+    if (!a.drawn || !essential[g.ends[e][0]]) continue;   // hidden, or not the start of its chain
+    int cur = 2 * e;
+    while (!essential[target(cur)]) {
+      const int w = target(cur), here = cur >> 1;
+      const int o = two[2 * w] == here ? two[2 * w + 1] : two[2 * w];
+      cur = g.ends[o][0] == w ? 2 * o : 2 * o + 1;
+    }
+    chains.push_back(Chain{g.ends[e][0], target(cur), e});
+  }
+  std::sort(chains.begin(), chains.end(),
+            [](const Chain& a, const Chain& b) { return std::pair(a.from, a.to) < std::pair(b.from, b.to); });
+  map.segments.reserve(chains.size());
+  for (const Chain& c : chains)
+    map.segments.push_back(Segment{point(c.from), point(c.to), g.attrs[c.edge].kind, *g.attrs[c.edge].faces});
+}
+
+VISMAP_KERNEL_END
+}  // namespace vismap

@@ -1,0 +1,52 @@
+// The visibility map as a plane graph, before it is written: the two ways of
+// building it (CGAL's sweep in map_builder.cpp, direct assembly from pieces that
+// meet only at their end points in map_assembly.cpp) fill this, and
+// map_canonical.cpp labels its faces and writes regions and segments from it.
+// Internal to the arrangements (kernel types).
+#pragma once
+#include <array>
+#include <vector>
+
+#include "arrangements/map_builder.h"
+
+namespace vismap {
+VISMAP_KERNEL_BEGIN
+
+// What an edge is, oriented from its lexicographically smaller end.
+struct EdgeAttr {
+  bool drawn = false;
+  EdgeKind kind = EdgeKind::Border;
+  const std::vector<int>* faces = nullptr;
+  int left = -1, right = -1;
+  bool same_as(const EdgeAttr& o) const {
+    if (drawn != o.drawn || left != o.left || right != o.right) return false;
+    return !drawn || (kind == o.kind && *faces == *o.faces);
+  }
+};
+
+// The attributes of an edge from the pieces lying on it (oriented like the edge):
+// the labels of any; where several drawn pieces coincide, the first in (depth,
+// face index, faces list) at the edge's midpoint is written.
+EdgeAttr edge_attr(const std::vector<MapPiece>& pieces, const int* on_edge, std::size_t count,
+                   const exact::P2& a, const exact::P2& b);
+
+// Halfedge 2e runs u -> v along edge e = (u, v), u < v, with attrs[e].left on
+// its left; halfedge 2e + 1 is its twin. Vertices are numbered in the
+// lexicographic order of their points, so canonical order needs no coordinates.
+struct MapGraph {
+  std::vector<exact::P2> points;            // vertices, distinct, in lexicographic order
+  std::vector<std::array<int, 2>> ends;     // edge -> (u, v)
+  std::vector<EdgeAttr> attrs;              // edge -> attributes
+  std::vector<int> next;                    // halfedge -> next halfedge around its face (face on the left)
+  std::vector<int> face;                    // halfedge -> face id
+  int faces = 0;                            // face ids 0 .. faces-1
+  int unbounded = -1;                       // the unbounded face's id
+};
+
+// Labels the faces (throws std::logic_error where the halfedges disagree: an
+// engine bug), drops superfluous vertices, and writes the regions and segments
+// into `map` in canonical order.
+void write_canonical(const MapGraph& g, VisibilityMap& map);
+
+VISMAP_KERNEL_END
+}  // namespace vismap
