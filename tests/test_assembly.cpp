@@ -1,0 +1,167 @@
+// The map assembled directly from pieces (arrangements/map_assembly.cpp, Franklin's
+// step 10) against the same map built by CGAL's sweep (map_builder.cpp): random
+// integer segment sets, full of the degeneracies the assembly must get right
+// (shared and collinear edges, T-junctions, vertical edges, components nested in
+// faces and touching only below one another's lowest vertex), are cut into the
+// edges of their arrangement, each face given a random label; both builders must
+// write the same regions and segments. And pieces that break the assembly's
+// promise (meeting only at end points) are refused where it can see it.
+#include <gtest/gtest.h>
+
+#include <CGAL/Arr_segment_traits_2.h>
+#include <CGAL/Arrangement_2.h>
+
+#include <map>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "arrangements/json_writer.h"
+#include "arrangements/map_builder.h"
+
+namespace {
+
+using namespace vismap;
+using exact::FT;
+using exact::P2;
+using exact::P3;
+using Arr = CGAL::Arrangement_2<CGAL::Arr_segment_traits_2<exact::K>>;
+
+std::string json_of(VisibilityMap m) {
+  m.stats = {};
+  return to_json(m);
+}
+
+struct PieceSet {
+  std::vector<MapPiece> pieces;
+  std::vector<P3> lines;                 // each piece's line with depth (two points)
+  std::vector<std::vector<int>> faces;   // the faces lists pieces point to
+};
+
+// The edges of the arrangement of `segments` as pieces: faces labelled at random
+// (-1 for the unbounded face), edges drawn at random, some doubled (two pieces on
+// one edge, at different depths) and given in random direction and order.
+PieceSet pieces_of(const std::vector<std::array<int, 4>>& segments, std::mt19937& rng) {
+  Arr arr;
+  std::vector<exact::Seg2> segs;
+  for (const auto& s : segments) segs.emplace_back(P2(s[0], s[1]), P2(s[2], s[3]));
+  CGAL::insert(arr, segs.begin(), segs.end());
+  std::map<Arr::Face_const_handle, int> label;
+  for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f)
+    label[f] = f->is_unbounded() ? -1 : static_cast<int>(rng() % 4) - 1;
+  PieceSet out;
+  out.faces = {{0}, {1}, {0, 2}};
+  out.lines.reserve(4 * arr.number_of_edges());
+  for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
+    const int copies = rng() % 5 == 0 ? 2 : 1;
+    for (int c = 0; c < copies; ++c) {
+      MapPiece m;
+      const bool flip = rng() % 2;
+      m.a = flip ? e->target()->point() : e->source()->point();
+      m.b = flip ? e->source()->point() : e->target()->point();
+      // Left of source -> target is the halfedge's face.
+      m.left = label[flip ? e->twin()->face() : e->face()];
+      m.right = label[flip ? e->face() : e->twin()->face()];
+      m.drawn = rng() % 2;
+      if (!m.drawn && m.left == m.right) m.drawn = true;   // an undrawn piece bounds something
+      const int kind = static_cast<int>(rng() % 3);
+      m.kind = kind == 2 ? EdgeKind::Intersection : EdgeKind::Border;
+      m.faces = &out.faces[kind];
+      m.order_face = out.faces[kind][0];
+      const FT z = static_cast<int>(rng() % 3);
+      out.lines.emplace_back(m.a.x(), m.a.y(), z);
+      out.lines.emplace_back(m.b.x(), m.b.y(), z + static_cast<int>(rng() % 2));
+      m.s = &out.lines[out.lines.size() - 2];
+      m.t = &out.lines.back();
+      out.pieces.push_back(m);
+    }
+  }
+  std::shuffle(out.pieces.begin(), out.pieces.end(), rng);
+  return out;
+}
+
+TEST(Assembly, SameMapAsTheSweepOnRandomDegenerateSegments) {
+  std::mt19937 rng(20261121);
+  int nonempty = 0, with_holes = 0;
+  for (int round = 0; round < 400; ++round) {
+    const int span = round % 2 == 0 ? 6 : 40;   // small: many coincidences
+    const int n = 2 + static_cast<int>(rng() % 25);
+    std::vector<std::array<int, 4>> segments;
+    for (int i = 0; i < n; ++i) {
+      std::array<int, 4> s;
+      for (int& v : s) v = static_cast<int>(rng() % span);
+      if (span > 6) {   // short: many small components
+        s[2] = s[0] + static_cast<int>(rng() % 9) - 4;
+        s[3] = s[1] + static_cast<int>(rng() % 9) - 4;
+      }
+      if (rng() % 4 == 0) s[2] = s[0];   // vertical
+      if (s[0] == s[2] && s[1] == s[3]) continue;
+      segments.push_back(s);
+    }
+    // Nested squares (holes in holes), and rectangles around parts of the scene:
+    // components inside faces.
+    if (rng() % 2 == 0) {
+      const int cx = static_cast<int>(rng() % span), cy = static_cast<int>(rng() % span);
+      for (int r = 1 + static_cast<int>(rng() % 2); r < 12; r += 2 + static_cast<int>(rng() % 3)) {
+        segments.push_back({cx - r, cy - r, cx + r, cy - r});
+        segments.push_back({cx + r, cy - r, cx + r, cy + r});
+        segments.push_back({cx + r, cy + r, cx - r, cy + r});
+        segments.push_back({cx - r, cy + r, cx - r, cy - r});
+      }
+    }
+    for (int k = static_cast<int>(rng() % 6); k > 0; --k) {
+      const int x0 = static_cast<int>(rng() % span), y0 = static_cast<int>(rng() % span);
+      const int x1 = x0 + 1 + static_cast<int>(rng() % (span / 2)), y1 = y0 + 1 + static_cast<int>(rng() % (span / 2));
+      segments.push_back({x0, y0, x1, y0});
+      segments.push_back({x1, y0, x1, y1});
+      segments.push_back({x1, y1, x0, y1});
+      segments.push_back({x0, y1, x0, y0});
+    }
+    PieceSet set = pieces_of(segments, rng);
+    std::vector<MapPiece> copy = set.pieces;
+    VisibilityMap swept, assembled;
+    build_map(set.pieces, swept);
+    ASSERT_NO_THROW(assemble_map(copy, assembled)) << "round " << round;
+    ASSERT_EQ(json_of(swept), json_of(assembled)) << "round " << round;
+    nonempty += !swept.regions.empty();
+    for (const Region& r : swept.regions) with_holes += !r.holes.empty();
+  }
+  // The rounds exercise what they are for.
+  EXPECT_GT(nonempty, 300);
+  EXPECT_GT(with_holes, 150);
+}
+
+TEST(Assembly, EmptyInputGivesAnEmptyMap) {
+  std::vector<MapPiece> none;
+  VisibilityMap m;
+  assemble_map(none, m);
+  EXPECT_TRUE(m.regions.empty());
+  EXPECT_TRUE(m.segments.empty());
+}
+
+// Two collinear pieces from one vertex with different far ends overlap in part:
+// the sweep would split them; the assembly was promised they do not occur.
+TEST(Assembly, RefusesPiecesThatOverlapInPart) {
+  const std::vector<int> faces{0};
+  const P3 s(FT(0), FT(0), FT(0)), t(FT(4), FT(0), FT(0));
+  auto piece = [&](int x0, int x1) {
+    MapPiece m;
+    m.a = P2(x0, 0);
+    m.b = P2(x1, 0);
+    m.drawn = true;
+    m.faces = &faces;
+    m.s = &s;
+    m.t = &t;
+    return m;
+  };
+  std::vector<MapPiece> pieces{piece(0, 2), piece(0, 4)};
+  VisibilityMap m;
+  EXPECT_THROW(assemble_map(pieces, m), std::logic_error);
+  // A vertex inside another piece, below a component: also seen.
+  std::vector<MapPiece> t_junction{piece(0, 4), piece(2, 2)};
+  t_junction[1].b = P2(2, 3);
+  EXPECT_THROW(assemble_map(t_junction, m), std::logic_error);
+}
+
+}  // namespace
