@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -305,6 +306,7 @@ void add_intersection_lines(Grid& g, ScreenScene& ss, Stats& stats) {
         c.s = P3(p, A.depth_at(p));
         c.t = P3(q, A.depth_at(q));
         c.sharers = {fa, fb};
+        c.sharer_edge = {-1, -1};
         c.faces = {std::min(A.face, B.face), std::max(A.face, B.face)};
         c.kind = EdgeKind::Intersection;
         c.drawn = true;
@@ -357,24 +359,42 @@ bool depth_crossing(const Curve& C, const Curve& D, const P2& lo, const P2& hi, 
   return true;
 }
 
-// Where segments [a, b] and [c, d] cross (they do, properly). Exact builds
-// compute it at once in GMP and keep it as a leaf: its interval is then the
-// tightest there is, so later predicates on it rarely need its exact value, and
-// when they do (equal end points in the arrangement) it is there, instead of a
-// tree of some twenty lazy nodes to evaluate.
+// Where segments [a, b] and [c, d] cross (they do, properly). In exact builds a
+// lazy point of one node: its interval is computed here, and its exact value
+// (directly in GMP, the same formula) only if a predicate or the output needs it.
+// Most crossings are hidden and never do. The interval is the intersection of
+// the two segments' parameterisations: a crossing on an axis-parallel segment
+// gets that segment's exact coordinate, so points along it compare cheaply.
+template <class Kernel>
+struct CrossingOf {
+  typedef typename Kernel::Point_2 result_type;
+  using N = typename Kernel::FT;   // (not auto: GMP's expression templates)
+  result_type operator()(const result_type& a, const result_type& b, const result_type& c,
+                         const result_type& d) const {
+    const N ux = b.x() - a.x(), uy = b.y() - a.y();
+    const N vx = d.x() - c.x(), vy = d.y() - c.y();
+    const N wx = c.x() - a.x(), wy = c.y() - a.y();
+    const N den = ux * vy - uy * vx;
+    const N lambda = (wx * vy - wy * vx) / den;
+    if constexpr (std::is_same_v<N, Interval>) {
+      if (den.inf() <= 0 && den.sup() >= 0) return result_type(Interval::largest(), Interval::largest());
+      const N mu = (wx * uy - wy * ux) / den;
+      return result_type(meet(a.x() + lambda * ux, c.x() + mu * vx), meet(a.y() + lambda * uy, c.y() + mu * vy));
+    } else {
+      return result_type(N(a.x() + lambda * ux), N(a.y() + lambda * uy));
+    }
+  }
+  // Two enclosures of one number: their common part.
+  static Interval meet(const Interval& p, const Interval& q) {
+    return Interval(std::max(p.inf(), q.inf()), std::min(p.sup(), q.sup()));
+  }
+};
+
 P2 crossing_point(const P2& a, const P2& b, const P2& c, const P2& d) {
 #ifdef VISMAP_FLOAT_KERNEL
-  const V2 u = b - a, v = d - c, w = c - a;
-  return a + ((w.x() * v.y() - w.y() * v.x()) / (u.x() * v.y() - u.y() * v.x())) * u;
+  return CrossingOf<K>()(a, b, c, d);
 #else
-  // On the kernel's exact points (no lazy coordinate nodes, no conversions).
-  using ET = K::Exact_kernel::FT;
-  const auto &ea = CGAL::exact(a), &eb = CGAL::exact(b), &ec = CGAL::exact(c), &ed = CGAL::exact(d);
-  const ET ux = eb.x() - ea.x(), uy = eb.y() - ea.y();
-  const ET vx = ed.x() - ec.x(), vy = ed.y() - ec.y();
-  const ET wx = ec.x() - ea.x(), wy = ec.y() - ea.y();
-  const ET lambda = (wx * vy - wy * vx) / (ux * vy - uy * vx);
-  return P2(FT(ET(ea.x() + lambda * ux)), FT(ET(ea.y() + lambda * uy)));
+  return CGAL::Lazy_construction<K, CrossingOf<K::Approximate_kernel>, CrossingOf<K::Exact_kernel>>()(a, b, c, d);
 #endif
 }
 
@@ -578,13 +598,14 @@ CGAL::Sign edge_along(const P3& p, const P3& q, Probe& m) {
       });
 }
 
-bool cover_at(const Facet& f, const P2& m, Probe& probe, Cover& out) {
+// `own`: the facet's edge that holds the curve (m is on its line), or -1.
+bool cover_at(const Facet& f, const P2& m, Probe& probe, Cover& out, int own) {
   const std::size_t n = f.v.size();
   bool left = true, right = true;
   for (std::size_t k = 0; k < n && (left || right); ++k) {
     const P3& p = f.v[k];
     const P3& q = f.v[(k + 1) % n];
-    int o = CGAL::orientation(p.xy(), q.xy(), m) * turn(f);
+    int o = static_cast<int>(k) == own ? 0 : CGAL::orientation(p.xy(), q.xy(), m) * turn(f);
     if (o > 0) continue;
     if (o < 0) return false;
     // m on this edge's line: the facet lies on one side of it. Which side of the
@@ -662,7 +683,11 @@ std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss,
       return (use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b)) == (increasing ? CGAL::SMALLER : CGAL::LARGER);
     };
     std::sort(pts.begin(), pts.end(), key_less);
-    pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+    // Points of one curve are equal when their dominant coordinates are.
+    auto same_key = [&](const P2& a, const P2& b) {
+      return (use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b)) == CGAL::EQUAL;
+    };
+    pts.erase(std::unique(pts.begin(), pts.end(), same_key), pts.end());
     pts.insert(pts.begin(), s);
     pts.push_back(t);
     Probe probe;
@@ -686,8 +711,11 @@ std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss,
       const CGAL::Bbox_2 mbox(probe.ix.inf(), probe.iy.inf(), probe.ix.sup(), probe.iy.sup());
       auto consider = [&](int fi) {
         if (!CGAL::do_overlap(mbox, ss.facets[fi].box)) return;   // cheap: cannot cover m
+        int own = -1;
+        for (std::size_t j = 0; j < cv.sharers.size(); ++j)
+          if (cv.sharers[j] == fi) own = cv.sharer_edge[j];
         Cover c;
-        if (cover_at(ss.facets[fi], m, probe, c)) { c.facet = fi; covers.push_back(c); }
+        if (cover_at(ss.facets[fi], m, probe, c, own)) { c.facet = fi; covers.push_back(c); }
       };
       for (int fi : cell.facets) consider(fi);
       if (cell.blocker >= 0) consider(cell.blocker);

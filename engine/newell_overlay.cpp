@@ -355,6 +355,7 @@ void add_piercing_lines(ScreenScene& ss, Stats& stats) {
     c.s = p;
     c.t = q;
     c.sharers = {fa, fb};
+    c.sharer_edge = {-1, -1};
     c.faces = {std::min(A.face, B.face), std::max(A.face, B.face)};
     c.kind = EdgeKind::Intersection;
     c.drawn = true;

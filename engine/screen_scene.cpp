@@ -21,6 +21,16 @@ Homogeneous transform(const View& view, const FT& x, const FT& y, const FT& z) {
   return {row(0), row(1), row(2), row(3)};
 }
 
+// Arithmetic done once per facet, outside the kernel: GMP rationals (plain
+// doubles in the float variant), the result made a kernel number (a leaf).
+#ifdef VISMAP_FLOAT_KERNEL
+using Num = double;
+double num(const FT& x) { return x; }
+#else
+using Num = mpq_class;
+mpq_class num(const FT& x) { return to_mpq(x); }
+#endif
+
 // Screen coordinates become exact leaves (GMP values, tight intervals) rather than
 // arithmetic trees: ties such as faces parallel to the screen then settle in the
 // interval filter instead of forcing exact re-evaluation at every comparison.
@@ -68,7 +78,8 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   std::vector<char> is_used(scene.vertices.size(), 0);
   for (const auto& f : wf.facets)
     for (auto id : f.v) if (!is_used[id]) { is_used[id] = 1; used.push_back(id); }
-  std::vector<Homogeneous> hv(scene.vertices.size());
+  std::vector<FT> hz;   // homogeneous Z, for clipping at the near plane (perspective)
+  if (view.perspective) hz.resize(scene.vertices.size());
   std::vector<P3> sv(scene.vertices.size());
   std::vector<char> front(scene.vertices.size(), 0);
   // Input vertices: the exact image computed directly in GMP (a few products of
@@ -82,7 +93,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     px = p.x; py = p.y; pz = p.z;
     for (int r = 0; r < (view.perspective ? 4 : 3); ++r) hq[r] = mq[r][0] * px + mq[r][1] * py + mq[r][2] * pz + mq[r][3];
     if (!view.perspective) hq[3] = 1;
-    hv[id] = Homogeneous{from_mpq(hq[0]), from_mpq(hq[1]), from_mpq(hq[2]), from_mpq(hq[3])};
+    if (view.perspective) hz[id] = from_mpq(hq[2]);
     front[id] = !view.perspective || (sgn(hq[2]) > 0 && sgn(hq[3]) > 0);
     if (!front[id]) continue;
     if (view.perspective) for (int r = 0; r < 3; ++r) hq[r] /= hq[3];
@@ -93,7 +104,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     return WorldPoint{FT(p.x), FT(p.y), FT(p.z)};
   };
   auto clip_point = [&](std::uint32_t a, std::uint32_t b) {
-    WorldPoint w = cut_at_near(world(a), world(b), hv[a].Z, hv[b].Z);
+    WorldPoint w = cut_at_near(world(a), world(b), hz[a], hz[b]);
     Homogeneous h = transform(view, w.x, w.y, w.z);
     return P3{leaf(h.X / h.W), leaf(h.Y / h.W), FT(0)};   // on the near plane: depth 0 exactly
   };
@@ -119,26 +130,41 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
       }
     }
     if (f.v.size() < 3) { f.v.clear(); ++outside; continue; }
-    // Facing: the sign of the projected area.
-    FT area2(0);
-    for (std::size_t k = 0; k < f.v.size(); ++k) {
-      const P3 &p = f.v[k], &q = f.v[(k + 1) % f.v.size()];
-      area2 += p.x * q.y - q.x * p.y;
-    }
-    auto s = CGAL::sign(area2);
+    // Facing: the sign of the projected area (vertex coordinates are leaves:
+    // intervals first, their exact values where those cannot tell).
+    const std::size_t nv = f.v.size();
+    const CGAL::Sign s = filtered_sign(
+        [&] {
+          Interval area2 = 0;
+          for (std::size_t k = 0; k < nv; ++k) {
+            const P3 &p = f.v[k], &q = f.v[(k + 1) % nv];
+            area2 += approx_of(p.x) * approx_of(q.y) - approx_of(q.x) * approx_of(p.y);
+          }
+          return area2;
+        },
+        [&]() -> mpq_class {
+          mpq_class area2 = 0;
+          for (std::size_t k = 0; k < nv; ++k) {
+            const P3 &p = f.v[k], &q = f.v[(k + 1) % nv];
+            area2 += to_mpq(p.x) * to_mpq(q.y) - to_mpq(q.x) * to_mpq(p.y);
+          }
+          return area2;
+        });
     f.facing = s > 0 ? Facing::Front : s < 0 ? Facing::Back : Facing::EdgeOn;
     if (f.facing == Facing::EdgeOn) { ++edge_on; continue; }
-    // depth = a x + b y + c from three vertices that are not collinear on screen.
-    const P3& p0 = f.v[0];
-    for (std::size_t k = 1; k + 1 < f.v.size(); ++k) {
+    // depth = a x + b y + c from three vertices that are not collinear on screen,
+    // computed once in GMP (doubles in the float variant).
+    const Num x0 = num(f.v[0].x), y0 = num(f.v[0].y), z0 = num(f.v[0].z);
+    for (std::size_t k = 1; k + 1 < nv; ++k) {
       const P3 &p1 = f.v[k], &p2 = f.v[k + 1];
-      FT nz = (p1.x - p0.x) * (p2.y - p0.y) - (p1.y - p0.y) * (p2.x - p0.x);
-      if (CGAL::is_zero(nz)) continue;
-      FT nx = (p1.y - p0.y) * (p2.z - p0.z) - (p1.z - p0.z) * (p2.y - p0.y);
-      FT ny = (p1.z - p0.z) * (p2.x - p0.x) - (p1.x - p0.x) * (p2.z - p0.z);
-      f.a = leaf(-nx / nz);
-      f.b = leaf(-ny / nz);
-      f.c = leaf(p0.z - f.a * p0.x - f.b * p0.y);
+      const Num x1 = num(p1.x) - x0, y1 = num(p1.y) - y0, z1 = num(p1.z) - z0;
+      const Num x2 = num(p2.x) - x0, y2 = num(p2.y) - y0, z2 = num(p2.z) - z0;
+      const Num nz = x1 * y2 - y1 * x2;
+      if (nz == 0) continue;
+      const Num a = (z1 * y2 - y1 * z2) / nz, b = (x1 * z2 - z1 * x2) / nz;
+      f.a = FT(a);
+      f.b = FT(b);
+      f.c = FT(Num(z0 - a * x0 - b * y0));
       break;
     }
     f.box = box_of(f.v[0]);
@@ -183,6 +209,10 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     bool any_occluder = false;
     for (const Sharer& s : wp.sharers) {
       c.sharers.push_back(s.facet);
+      // A facet not cut at the near plane keeps its vertices: its edge k is the world's.
+      const auto& wv = wf.facets[s.facet].v;
+      const bool whole = std::all_of(wv.begin(), wv.end(), [&](std::uint32_t id) { return front[id] != 0; });
+      c.sharer_edge.push_back(whole ? s.edge : -1);
       if (wf.facets[s.facet].role[s.edge] == EdgeRole::Boundary) c.faces.push_back(wf.facets[s.facet].face);
       const Facet& f = ss.facets[s.facet];
       any_occluder |= f.occluder || (!f.v.empty() && f.facing == Facing::EdgeOn);
@@ -233,6 +263,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     c.s = ce[0];
     c.t = ce[1];
     c.sharers = {static_cast<int>(fi)};
+    c.sharer_edge = {-1};
     c.order_face = ss.facets[fi].face;
     c.box = box_of(c.s) + box_of(c.t);
     ss.curves.push_back(std::move(c));

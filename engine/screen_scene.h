@@ -34,6 +34,8 @@ struct Curve {
   P3 s, t;                       // screen end points with depth
   long vs = -1, vt = -1;         // end point identity (canonical vertex id) or -1
   std::vector<int> sharers;      // facets whose boundary it is (for intersections: the two facets)
+  std::vector<int> sharer_edge;  // per sharer: k where its edge v[k] -> v[k+1] holds the curve
+                                 // (-1: not known, as on a facet cut at the near plane)
   std::vector<int> faces;        // faces written in the JSON, ascending; empty = never drawn
   EdgeKind kind = EdgeKind::Border;
   bool drawn = false;
