@@ -53,10 +53,24 @@ inline FT from_mpq(const mpq_class& q) { return FT(q); }
 inline CGAL::Interval_nt<false> approx_of(const FT& x) { return x.approx(); }
 #endif
 
+using Interval = CGAL::Interval_nt<false>;
+
+// A point's coordinates as intervals (no lazy number built) and exactly.
+#ifdef VISMAP_FLOAT_KERNEL
+inline Interval approx_x(const P2& p) { return Interval(p.x()); }
+inline Interval approx_y(const P2& p) { return Interval(p.y()); }
+inline mpq_class exact_x(const P2& p) { return mpq_class(p.x()); }
+inline mpq_class exact_y(const P2& p) { return mpq_class(p.y()); }
+#else
+inline Interval approx_x(const P2& p) { return p.approx().x(); }
+inline Interval approx_y(const P2& p) { return p.approx().y(); }
+inline mpq_class exact_x(const P2& p) { return to_mpq(CGAL::exact(p).x()); }
+inline mpq_class exact_y(const P2& p) { return to_mpq(CGAL::exact(p).y()); }
+#endif
+
 // The sign of an expression: on the intervals of its operands if they decide it,
 // else exactly in GMP rationals; counted like CGAL's own filters. For the hot
 // predicates whose lazy form would build a tree of numbers at every call.
-using Interval = CGAL::Interval_nt<false>;
 template <class OnIntervals, class OnRationals>
 CGAL::Sign filtered_sign(OnIntervals&& approx, OnRationals&& exact) {
   ++filter_counts.calls;

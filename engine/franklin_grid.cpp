@@ -18,21 +18,24 @@ int cell_index(const std::vector<double>& bounds, double v) {
   return std::clamp(i, 0, static_cast<int>(bounds.size()) - 2);
 }
 
-// The cell that holds exact coordinate v under the half-open rule [X_i, X_i+1)
-// (the last cell is closed): guessed in doubles, confirmed exactly.
-int exact_cell_index(const std::vector<double>& bounds, const FT& v) {
+// The cell that holds a coordinate under the half-open rule [X_i, X_i+1) (the
+// last cell is closed): guessed from its interval iv, confirmed on the interval
+// or, where that cannot tell, on its exact value (exact() -> mpq_class).
+template <class Exact>
+int cell_index_of(const std::vector<double>& bounds, const Interval& iv, Exact&& exact) {
   const int last = static_cast<int>(bounds.size()) - 2;
-  const auto iv = CGAL::to_interval(v);
-  // v < b, on the interval first (no lazy number built for b).
-  auto less = [&](double b) {
-    if (iv.second < b) return true;
-    if (iv.first >= b) return false;
-    return v < FT(b);
+  auto less = [&](double b) {   // v < b
+    if (iv.sup() < b) return true;
+    if (iv.inf() >= b) return false;
+    return exact() < b;
   };
-  int i = cell_index(bounds, CGAL::to_double(v));
+  int i = cell_index(bounds, CGAL::to_double(iv));
   while (i > 0 && less(bounds[i])) --i;
   while (i < last && !less(bounds[i + 1])) ++i;
   return i;
+}
+int exact_cell_index(const std::vector<double>& bounds, const FT& v) {
+  return cell_index_of(bounds, approx_of(v), [&] { return to_mpq(v); });
 }
 
 struct CellRange {
@@ -565,21 +568,42 @@ namespace {
 // numbers and as intervals: the comparisons below run on the intervals and fall
 // back to rationals only when those cannot decide (no lazy trees are built).
 struct Probe {
-  FT x, y;                    // m
-  Interval ix, iy;
+  const P2 *a, *b;            // the piece's ends: m is their midpoint
+  Interval ix, iy;            // m
   const P3 *s, *t;            // the curve's end points: direction t - s
   Interval idx, idy;
   mpq_class ex, ey, edx, edy; // exact values, filled on first need
   bool have_exact = false;
+  void at_midpoint(const P2& pa, const P2& pb) {
+    a = &pa;
+    b = &pb;
+    CGAL::Protect_FPU_rounding<true> upward;
+    ix = (approx_x(pa) + approx_x(pb)) / 2;
+    iy = (approx_y(pa) + approx_y(pb)) / 2;
+    have_exact = false;
+  }
   void need_exact() {
     if (have_exact) return;
-    ex = to_mpq(x);
-    ey = to_mpq(y);
+    ex = (exact_x(*a) + exact_x(*b)) / 2;
+    ey = (exact_y(*a) + exact_y(*b)) / 2;
     edx = to_mpq(t->x) - to_mpq(s->x);
     edy = to_mpq(t->y) - to_mpq(s->y);
     have_exact = true;
   }
 };
+
+// Orientation of (p, q, m): positive when m is left of p -> q.
+CGAL::Sign orientation(const P3& p, const P3& q, Probe& m) {
+  return filtered_sign(
+      [&] {
+        return (approx_of(q.x) - approx_of(p.x)) * (m.iy - approx_of(p.y)) -
+               (approx_of(q.y) - approx_of(p.y)) * (m.ix - approx_of(p.x));
+      },
+      [&]() -> mpq_class {
+        m.need_exact();
+        return (to_mpq(q.x) - to_mpq(p.x)) * (m.ey - to_mpq(p.y)) - (to_mpq(q.y) - to_mpq(p.y)) * (m.ex - to_mpq(p.x));
+      });
+}
 
 // What one facet contributes at a point m of a curve: whether it covers the
 // points just left / right of m.
@@ -599,13 +623,13 @@ CGAL::Sign edge_along(const P3& p, const P3& q, Probe& m) {
 }
 
 // `own`: the facet's edge that holds the curve (m is on its line), or -1.
-bool cover_at(const Facet& f, const P2& m, Probe& probe, Cover& out, int own) {
+bool cover_at(const Facet& f, Probe& probe, Cover& out, int own) {
   const std::size_t n = f.v.size();
   bool left = true, right = true;
   for (std::size_t k = 0; k < n && (left || right); ++k) {
     const P3& p = f.v[k];
     const P3& q = f.v[(k + 1) % n];
-    int o = static_cast<int>(k) == own ? 0 : CGAL::orientation(p.xy(), q.xy(), m) * turn(f);
+    int o = static_cast<int>(k) == own ? 0 : orientation(p, q, probe) * turn(f);
     if (o > 0) continue;
     if (o < 0) return false;
     // m on this edge's line: the facet lies on one side of it. Which side of the
@@ -643,13 +667,22 @@ CGAL::Sign slope_order(const Facet& f, const Facet& g, Probe& m) {
       });
 }
 
-// sign(depth of f at m - z).
-CGAL::Sign depth_against(const Facet& f, Probe& m, const FT& z) {
+// sign(depth of f at m - depth of the curve at m), the curve's depth
+// interpolated from its end points along x (or y, for a vertical curve).
+CGAL::Sign depth_against_curve(const Facet& f, Probe& m) {
+  const bool use_x = m.idx.inf() > 0 || m.idx.sup() < 0 || CGAL::sign(m.t->x - m.s->x) != CGAL::ZERO;
   return filtered_sign(
-      [&] { return approx_of(f.a) * m.ix + approx_of(f.b) * m.iy + approx_of(f.c) - approx_of(z); },
+      [&] {
+        const Interval lambda = use_x ? (m.ix - approx_of(m.s->x)) / m.idx : (m.iy - approx_of(m.s->y)) / m.idy;
+        const Interval z = approx_of(m.s->z) + lambda * (approx_of(m.t->z) - approx_of(m.s->z));
+        return approx_of(f.a) * m.ix + approx_of(f.b) * m.iy + approx_of(f.c) - z;
+      },
       [&]() -> mpq_class {
         m.need_exact();
-        return to_mpq(f.a) * m.ex + to_mpq(f.b) * m.ey + to_mpq(f.c) - to_mpq(z);
+        const mpq_class lambda = use_x ? mpq_class((m.ex - to_mpq(m.s->x)) / m.edx)
+                                       : mpq_class((m.ey - to_mpq(m.s->y)) / m.edy);
+        const mpq_class z = to_mpq(m.s->z) + lambda * (to_mpq(m.t->z) - to_mpq(m.s->z));
+        return to_mpq(f.a) * m.ex + to_mpq(f.b) * m.ey + to_mpq(f.c) - z;
       });
 }
 
@@ -700,13 +733,9 @@ std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss,
     }
     for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
       ++pieces;
-      const P2 m = CGAL::midpoint(pts[k], pts[k + 1]);
-      probe.x = m.x();
-      probe.y = m.y();
-      probe.ix = approx_of(probe.x);
-      probe.iy = approx_of(probe.y);
-      probe.have_exact = false;
-      Cell& cell = g.at(exact_cell_index(g.X, probe.x), exact_cell_index(g.Y, probe.y));
+      probe.at_midpoint(pts[k], pts[k + 1]);
+      Cell& cell = g.at(cell_index_of(g.X, probe.ix, [&] { probe.need_exact(); return probe.ex; }),
+                        cell_index_of(g.Y, probe.iy, [&] { probe.need_exact(); return probe.ey; }));
       covers.clear();
       const CGAL::Bbox_2 mbox(probe.ix.inf(), probe.iy.inf(), probe.ix.sup(), probe.iy.sup());
       auto consider = [&](int fi) {
@@ -715,7 +744,7 @@ std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss,
         for (std::size_t j = 0; j < cv.sharers.size(); ++j)
           if (cv.sharers[j] == fi) own = cv.sharer_edge[j];
         Cover c;
-        if (cover_at(ss.facets[fi], m, probe, c, own)) { c.facet = fi; covers.push_back(c); }
+        if (cover_at(ss.facets[fi], probe, c, own)) { c.facet = fi; covers.push_back(c); }
       };
       for (int fi : cell.facets) consider(fi);
       if (cell.blocker >= 0) consider(cell.blocker);
@@ -743,13 +772,10 @@ std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss,
       // comes before it in (depth, face index).
       if (cv.drawn) {
         vp.visible = true;
-        FT zm;
-        bool have_zm = false;
         for (std::size_t i = 0; i < covers.size() && vp.visible; ++i) {
           const int face = ss.facets[covers[i].facet].face;
           if (std::binary_search(cv.faces.begin(), cv.faces.end(), face)) continue;
-          if (!have_zm) { zm = depth_on(cv, m); have_zm = true; }
-          auto c = depth_against(ss.facets[covers[i].facet], probe, zm);
+          auto c = depth_against_curve(ss.facets[covers[i].facet], probe);
           if (!(c == CGAL::NEGATIVE || (c == CGAL::ZERO && face < cv.order_face))) continue;
           bool both = covers[i].left && covers[i].right;
           // Two facets of one (fanned) polygon covering the two sides hide it only
