@@ -141,6 +141,56 @@ bool meets_cell(const P3& s, const P3& t, const std::array<Corner, 4>& c) {
 
 }  // namespace
 
+namespace {
+// Position of a point of the unit square along a Morton (Z-order) curve, 16 bits
+// per axis.
+std::uint32_t morton(double u, double v) {
+  auto spread = [](std::uint32_t x) {
+    x &= 0xffff;
+    x = (x | (x << 8)) & 0x00ff00ff;
+    x = (x | (x << 4)) & 0x0f0f0f0f;
+    x = (x | (x << 2)) & 0x33333333;
+    return (x | (x << 1)) & 0x55555555;
+  };
+  auto q = [](double t) { return static_cast<std::uint32_t>((t > 0 ? (t < 1 ? t : 1) : 0) * 65535.0); };   // NaN: 0
+  return spread(q(u)) | (spread(q(v)) << 1);
+}
+}  // namespace
+
+void order_spatially(ScreenScene& ss) {
+  CGAL::Bbox_2 all;
+  for (const Facet& f : ss.facets) all += f.box;
+  for (const Curve& c : ss.curves) all += c.box;
+  const double w = std::max(all.xmax() - all.xmin(), 1e-300), h = std::max(all.ymax() - all.ymin(), 1e-300);
+  auto key = [&](const CGAL::Bbox_2& b) -> std::uint32_t {
+    if (!(b.xmin() <= b.xmax() && b.ymin() <= b.ymax())) return 0;   // no box (edge-on facet)
+    return morton(((b.xmin() + b.xmax()) / 2 - all.xmin()) / w, ((b.ymin() + b.ymax()) / 2 - all.ymin()) / h);
+  };
+  auto order = [&](std::size_t n, auto&& box_of) {
+    std::vector<std::pair<std::uint32_t, int>> k(n);
+    for (std::size_t i = 0; i < n; ++i) k[i] = {key(box_of(i)), static_cast<int>(i)};
+    std::sort(k.begin(), k.end());   // ties by index: deterministic
+    return k;
+  };
+  const auto fk = order(ss.facets.size(), [&](std::size_t i) { return ss.facets[i].box; });
+  std::vector<int> new_index(ss.facets.size());
+  std::vector<Facet> facets;
+  facets.reserve(ss.facets.size());
+  for (const auto& [unused, i] : fk) {
+    new_index[i] = static_cast<int>(facets.size());
+    facets.push_back(std::move(ss.facets[i]));
+  }
+  ss.facets = std::move(facets);
+  const auto ck = order(ss.curves.size(), [&](std::size_t i) { return ss.curves[i].box; });
+  std::vector<Curve> curves;
+  curves.reserve(ss.curves.size());
+  for (const auto& [unused, i] : ck) {
+    curves.push_back(std::move(ss.curves[i]));
+    for (int& s : curves.back().sharers) s = new_index[s];
+  }
+  ss.curves = std::move(curves);
+}
+
 // Steps 2-4: B = c * min(sqrt(N), 1/L) cells per side over the projected scene.
 Grid make_grid(const ScreenScene& ss, double c, Stats& stats) {
   CGAL::Bbox_2 box;
