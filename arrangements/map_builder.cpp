@@ -83,7 +83,7 @@ void build_map_from_floats(std::vector<FloatPiece>& pieces, VisibilityMap& map) 
     mp.push_back(MapPiece{ends[ends.size() - 2].xy(), ends.back().xy(), &ends[ends.size() - 2], &ends.back(), f.left,
                           f.right, f.drawn, f.kind, f.faces, f.order_face});
   }
-  build_map(mp, map);
+  assemble_map(mp, map);
 }
 
 }  // namespace vismap

@@ -35,8 +35,8 @@ void assemble_map(std::vector<MapPiece>& pieces, VisibilityMap& map);
 VISMAP_KERNEL_END
 
 // A piece computed in doubles by the float variant of the engine (benchmarks
-// only), handed to the exact arrangement builder. Pieces whose ends coincide
-// are dropped.
+// only), handed to the assembly (assemble_map) with its doubles taken as exact.
+// Pieces whose ends coincide are dropped.
 struct FloatPiece {
   double ax, ay, bx, by, za, zb;
   int left = -1, right = -1;

@@ -51,9 +51,10 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
 
   // 10. The planar arrangement of the visible pieces, its regions labelled.
 #ifdef VISMAP_FLOAT_KERNEL
-  // The float variant's pieces go to the exact arrangement: CGAL's sweep on
-  // contradictory doubles crashes (seen on 10^3 random squares), and a crash
-  // tells less than a map the exact builder can check.
+  // The float variant's pieces go to the same assembly, on their doubles taken
+  // as exact: where rounding made them cross or overlap in part (as on random
+  // squares from 10^3 up), it refuses them (std::logic_error) instead of
+  // writing a map that is wrong.
   std::vector<FloatPiece> mp;
   mp.reserve(pieces.size());
   for (const VisiblePiece& p : pieces) {
