@@ -424,6 +424,7 @@ struct CrossingOf {
   using N = typename Kernel::FT;   // (not auto: GMP's expression templates)
   result_type operator()(const result_type& a, const result_type& b, const result_type& c,
                          const result_type& d) const {
+    if constexpr (std::is_same_v<N, mpq_class>) return fraction_free(a, b, c, d);
     const N ux = b.x() - a.x(), uy = b.y() - a.y();
     const N vx = d.x() - c.x(), vy = d.y() - c.y();
     const N wx = c.x() - a.x(), wy = c.y() - a.y();
@@ -436,6 +437,35 @@ struct CrossingOf {
     } else {
       return result_type(N(a.x() + lambda * ux), N(a.y() + lambda * uy));
     }
+  }
+  // The exact value on integers: the eight coordinates over one common
+  // denominator L (projected doubles share a power of two), the formula on their
+  // numerators, one normalisation per coordinate at the end, instead of a
+  // normalised rational (gcd) at every step.
+  static result_type fraction_free(const result_type& a, const result_type& b, const result_type& c,
+                                   const result_type& d) {
+    const mpq_class* q[8] = {&a.x(), &a.y(), &b.x(), &b.y(), &c.x(), &c.y(), &d.x(), &d.y()};
+    mpz_class L = q[0]->get_den();
+    for (int i = 1; i < 8; ++i)
+      if (q[i]->get_den() != L) mpz_lcm(L.get_mpz_t(), L.get_mpz_t(), q[i]->get_den_mpz_t());
+    mpz_class X[8];
+    for (int i = 0; i < 8; ++i) {
+      if (q[i]->get_den() == L) { X[i] = q[i]->get_num(); continue; }
+      mpz_divexact(X[i].get_mpz_t(), L.get_mpz_t(), q[i]->get_den_mpz_t());
+      X[i] *= q[i]->get_num();
+    }
+    const mpz_class ux = X[2] - X[0], uy = X[3] - X[1], vx = X[6] - X[4], vy = X[7] - X[5];
+    const mpz_class wx = X[4] - X[0], wy = X[5] - X[1];
+    const mpz_class den = ux * vy - uy * vx, num = wx * vy - wy * vx;
+    const mpz_class scale = den * L;
+    auto coordinate = [&](const mpz_class& x0, const mpz_class& u) {
+      mpq_class r;
+      r.get_num() = x0 * den + num * u;
+      r.get_den() = scale;
+      r.canonicalize();
+      return r;
+    };
+    return result_type(coordinate(X[0], ux), coordinate(X[1], uy));
   }
   // Two enclosures of one number: their common part.
   static Interval meet(const Interval& p, const Interval& q) {
