@@ -180,7 +180,12 @@ void write_files_atomically(const std::vector<std::pair<std::string, std::string
     pending.back()->write(contents);
     pending.back()->finish();
   }
-  for (auto& f : pending) f->commit();
+  {
+    // All renamed or none: a signal between two renames would leave a new file
+    // beside an old one. (Blocked, it is taken when the last rename is done.)
+    BlockSignals block;
+    for (auto& f : pending) f->commit();
+  }
   for (const std::string* contents : to_stdout) {
     if (std::fwrite(contents->data(), 1, contents->size(), stdout) != contents->size() || std::fflush(stdout) != 0)
       throw std::runtime_error(std::string("-: cannot write to standard output: ") + std::strerror(errno));
