@@ -9,6 +9,7 @@
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
+#include <string>
 
 #include "arrangements/map_graph.h"
 
@@ -27,7 +28,7 @@ const CGAL::Simple_cartesian<Interval>::Point_2& approx_point(const P2& p) { ret
 // Vertices: the distinct end points, numbered in lexicographic order.
 std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, std::vector<P2>& points) {
   struct End {
-    Interval x, y;
+    Interval x;   // sorts most pairs without touching the point
     const P2* p;
     int at;   // 2 * piece + (0: a, 1: b)
   };
@@ -36,7 +37,7 @@ std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, std::vec
   for (std::size_t i = 0; i < pieces.size(); ++i)
     for (int k = 0; k < 2; ++k) {
       const P2& p = k == 0 ? pieces[i].a : pieces[i].b;
-      ends.push_back(End{approx_point(p).x(), approx_point(p).y(), &p, static_cast<int>(2 * i + k)});
+      ends.push_back(End{approx_point(p).x(), &p, static_cast<int>(2 * i + k)});
     }
   auto compare = [](const End& a, const End& b) {
     if (a.x.sup() < b.x.inf()) return CGAL::SMALLER;
@@ -270,13 +271,6 @@ int face_below(const Assembly& a, const Columns& cols, int w) {
   if (best_edge >= 0) return 2 * best_edge;   // left to right: the face above is on its left
   return -1;
 }
-
-struct UnionFind {
-  std::vector<int> p;
-  explicit UnionFind(std::size_t n) : p(n) { std::iota(p.begin(), p.end(), 0); }
-  int find(int x) { while (p[x] != x) x = p[x] = p[p[x]]; return x; }
-  void join(int a, int b) { p[find(a)] = find(b); }
-};
 
 }  // namespace
 

@@ -11,13 +11,6 @@ namespace {
 
 using namespace exact;
 
-struct UnionFind {
-  std::vector<int> p;
-  explicit UnionFind(std::size_t n) : p(n) { std::iota(p.begin(), p.end(), 0); }
-  int find(int x) { while (p[x] != x) x = p[x] = p[p[x]]; return x; }
-  void join(int a, int b) { p[find(a)] = find(b); }
-};
-
 FT depth_at(const MapPiece& m, const P2& p) { return depth_along(*m.s, *m.t, p); }
 
 // Canonical start: the rotation that is lexicographically smallest (vertex

@@ -234,6 +234,7 @@ Grid make_grid(const ScreenScene& ss, double c, Stats& stats) {
 // blocking facet hides it there; a facet covering a cell may become its blocker.
 void bucket_facets(Grid& g, ScreenScene& ss, Stats& stats) {
   std::int64_t hidden_facets = 0, skipped = 0, blockers = 0;
+  UpwardRounding upward;   // the corner tests are our own filtered predicates
   for (int fi = 0; fi < static_cast<int>(ss.facets.size()); ++fi) {
     Facet& f = ss.facets[fi];
     if (!f.occluder) continue;
@@ -272,6 +273,7 @@ void bucket_facets(Grid& g, ScreenScene& ss, Stats& stats) {
 // Step 6: drop what the final blocker hides (it may have changed after a facet was listed).
 void prune_facets(Grid& g, const ScreenScene& ss, Stats& stats) {
   std::int64_t pruned = 0;
+  UpwardRounding upward;
   for (int iy = 0; iy < g.B; ++iy)
     for (int ix = 0; ix < g.B; ++ix) {
       Cell& cell = g.at(ix, iy);
@@ -379,6 +381,7 @@ void add_intersection_lines(Grid& g, ScreenScene& ss, Stats& stats) {
 // behind the cell's blocker (7a-i); a curve listed nowhere is hidden (7b).
 void bucket_curves(Grid& g, const ScreenScene& ss, Stats& stats) {
   std::int64_t hidden = 0, listed = 0;
+  UpwardRounding upward;   // meets_cell, curve_behind: our own filtered predicates
   for (int ci = 0; ci < static_cast<int>(ss.curves.size()); ++ci) {
     const Curve& cv = ss.curves[ci];
     CellRange r = range_of(g, cv.box);
@@ -652,18 +655,19 @@ struct Probe {
   Interval ix, iy;            // m
   const P3 *s, *t;            // the curve's end points: direction t - s
   Interval idx, idy;
+  bool x_moves = true;        // t.x != s.x (else the curve is vertical)
   mpq_class ex, ey, edx, edy; // exact values, filled on first need
   bool have_exact = false;
-  void at_midpoint(const P2& pa, const P2& pb) {
+  void at_midpoint(const P2& pa, const P2& pb) {   // (rounding upward: the caller's UpwardRounding)
     a = &pa;
     b = &pb;
-    CGAL::Protect_FPU_rounding<true> upward;
     ix = (approx_x(pa) + approx_x(pb)) / 2;
     iy = (approx_y(pa) + approx_y(pb)) / 2;
     have_exact = false;
   }
   void need_exact() {
     if (have_exact) return;
+    NearestRounding nearest;
     ex = (exact_x(*a) + exact_x(*b)) / 2;
     ey = (exact_y(*a) + exact_y(*b)) / 2;
     edx = to_mpq(t->x) - to_mpq(s->x);
@@ -750,7 +754,7 @@ CGAL::Sign slope_order(const Facet& f, const Facet& g, Probe& m) {
 // sign(depth of f at m - depth of the curve at m), the curve's depth
 // interpolated from its end points along x (or y, for a vertical curve).
 CGAL::Sign depth_against_curve(const Facet& f, Probe& m) {
-  const bool use_x = m.idx.inf() > 0 || m.idx.sup() < 0 || CGAL::sign(m.t->x - m.s->x) != CGAL::ZERO;
+  const bool use_x = m.x_moves;
   return filtered_sign(
       [&] {
         const Interval lambda = use_x ? (m.ix - approx_of(m.s->x)) / m.idx : (m.iy - approx_of(m.s->y)) / m.idy;
@@ -811,6 +815,8 @@ std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss,
       probe.idx = approx_of(cv.t.x) - approx_of(cv.s.x);
       probe.idy = approx_of(cv.t.y) - approx_of(cv.s.y);
     }
+    probe.x_moves = probe.idx.inf() > 0 || probe.idx.sup() < 0 || CGAL::compare_x(s, t) != CGAL::EQUAL;
+    UpwardRounding upward;   // the loop calls only our own filtered predicates
     for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
       ++pieces;
       probe.at_midpoint(pts[k], pts[k + 1]);
