@@ -36,6 +36,18 @@ mpq_class num(const FT& x) { return to_mpq(x); }
 // interval filter instead of forcing exact re-evaluation at every comparison.
 FT leaf(const FT& x) { return from_mpq(to_mpq(x)); }
 
+// A projected coordinate as a kernel number. In a view along an axis (CAD's
+// front, top and side views) it is often a double exactly: then a double
+// constant, whose interval is the point itself and costs nothing to find.
+FT screen_number(const mpq_class& q) {
+#ifndef VISMAP_FLOAT_KERNEL
+  const mpz_srcptr num = q.get_num_mpz_t(), den = q.get_den_mpz_t();
+  if (mpz_popcount(den) == 1 && mpz_sizeinbase(num, 2) <= 53 && mpz_sizeinbase(den, 2) <= 1075)
+    return FT(q.get_d());   // (exact: 53 bits over a power of two)
+#endif
+  return from_mpq(q);
+}
+
 
 CGAL::Bbox_2 box_of(const P3& p) {
   auto ix = CGAL::to_interval(p.x), iy = CGAL::to_interval(p.y);
@@ -93,11 +105,11 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     px = p.x; py = p.y; pz = p.z;
     for (int r = 0; r < (view.perspective ? 4 : 3); ++r) hq[r] = mq[r][0] * px + mq[r][1] * py + mq[r][2] * pz + mq[r][3];
     if (!view.perspective) hq[3] = 1;
-    if (view.perspective) hz[id] = from_mpq(hq[2]);
+    if (view.perspective) hz[id] = screen_number(hq[2]);
     front[id] = !view.perspective || (sgn(hq[2]) > 0 && sgn(hq[3]) > 0);
     if (!front[id]) continue;
     if (view.perspective) for (int r = 0; r < 3; ++r) hq[r] /= hq[3];
-    sv[id] = P3{from_mpq(hq[0]), from_mpq(hq[1]), from_mpq(hq[2])};
+    sv[id] = P3{screen_number(hq[0]), screen_number(hq[1]), screen_number(hq[2])};
   }
   auto world = [&](std::uint32_t id) {
     const Vec3& p = scene.vertices[id];
@@ -204,6 +216,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
 
   const double cos_crease = std::cos(opt.crease_deg * M_PI / 180);
   std::int64_t dropped_hidden = 0, dropped_clipped = 0, dropped_point = 0;
+  ss.curves.reserve(pieces.size() + ss.facets.size() / 8);   // (+ near-plane cuts; + intersection lines later)
   for (const WorldPiece& wp : pieces) {
     Curve c;
     bool any_occluder = false;
