@@ -5,10 +5,10 @@
 // Internal to the arrangements (kernel types).
 #pragma once
 #include <array>
-#include <numeric>
 #include <vector>
 
 #include "arrangements/map_builder.h"
+#include "engine/union_find.h"
 
 namespace vismap {
 VISMAP_KERNEL_BEGIN
@@ -42,14 +42,6 @@ struct MapGraph {
   std::vector<int> face;                    // halfedge -> face id
   int faces = 0;                            // face ids 0 .. faces-1
   int unbounded = -1;                       // the unbounded face's id
-};
-
-// Disjoint sets of 0 .. n-1 (faces of one region, vertices of one component).
-struct UnionFind {
-  std::vector<int> p;
-  explicit UnionFind(std::size_t n) : p(n) { std::iota(p.begin(), p.end(), 0); }
-  int find(int x) { while (p[x] != x) x = p[x] = p[p[x]]; return x; }
-  void join(int a, int b) { p[find(a)] = find(b); }
 };
 
 // Labels the faces (throws std::logic_error where the halfedges disagree: an

@@ -5,18 +5,10 @@
 #include <cmath>
 #include <numeric>
 
+#include "engine/union_find.h"
+
 namespace vismap::engine {
 namespace {
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void join(int a, int b) { parent[find(a)] = find(b); }
-};
 
 // Six times the signed volume of the tetrahedron (o, a, b, c), exactly.
 mpq_class det(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -32,7 +24,7 @@ std::vector<std::int8_t> closed_component_sides(
     const Scene& scene, const WorldFacets& wf, const std::vector<WorldPiece>& pieces,
     const View& view, const std::function<bool(std::uint32_t)>& vertex_in_front) {
   const int n = static_cast<int>(wf.facets.size());
-  UnionFind uf(n);
+  UnionFind uf(static_cast<std::size_t>(n));
   // A piece closes the surface when exactly two facets share it, traversing it in
   // opposite directions (consistent orientation).
   std::vector<char> good(pieces.size());

@@ -1,11 +1,11 @@
 #include "engine/franklin_grid.h"
 
-
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
-#include <unordered_map>
 #include <unordered_set>
+
+#include "engine/union_find.h"
 
 namespace vismap::engine {
 VISMAP_KERNEL_BEGIN
@@ -586,16 +586,15 @@ void share_overlap_cuts(const ScreenScene& ss, std::vector<std::pair<int, int>>&
   if (overlaps.empty()) return;
   std::sort(overlaps.begin(), overlaps.end());
   overlaps.erase(std::unique(overlaps.begin(), overlaps.end()), overlaps.end());
-  std::unordered_map<int, int> parent;
-  auto find = [&](int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  for (const auto& [c, d] : overlaps) { parent.try_emplace(c, c); parent.try_emplace(d, d); }
-  for (const auto& [c, d] : overlaps) parent[find(c)] = find(d);
+  UnionFind lines(ss.curves.size());
+  for (const auto& [c, d] : overlaps) lines.join(c, d);
   std::vector<std::pair<int, int>> members;   // (line, curve)
-  for (const auto& [c, unused] : parent) members.emplace_back(find(c), c);
+  for (const auto& [c, d] : overlaps) {
+    members.emplace_back(lines.find(c), c);
+    members.emplace_back(lines.find(d), d);
+  }
   std::sort(members.begin(), members.end());
+  members.erase(std::unique(members.begin(), members.end()), members.end());
   std::vector<P2> points;
   for (std::size_t k = 0; k < members.size();) {
     std::size_t l = k;
@@ -754,17 +753,16 @@ CGAL::Sign slope_order(const Facet& f, const Facet& g, Probe& m) {
 // sign(depth of f at m - depth of the curve at m), the curve's depth
 // interpolated from its end points along x (or y, for a vertical curve).
 CGAL::Sign depth_against_curve(const Facet& f, Probe& m) {
-  const bool use_x = m.x_moves;
   return filtered_sign(
       [&] {
-        const Interval lambda = use_x ? (m.ix - approx_of(m.s->x)) / m.idx : (m.iy - approx_of(m.s->y)) / m.idy;
+        const Interval lambda = m.x_moves ? (m.ix - approx_of(m.s->x)) / m.idx : (m.iy - approx_of(m.s->y)) / m.idy;
         const Interval z = approx_of(m.s->z) + lambda * (approx_of(m.t->z) - approx_of(m.s->z));
         return approx_of(f.a) * m.ix + approx_of(f.b) * m.iy + approx_of(f.c) - z;
       },
       [&]() -> mpq_class {
         m.need_exact();
-        const mpq_class lambda = use_x ? mpq_class((m.ex - to_mpq(m.s->x)) / m.edx)
-                                       : mpq_class((m.ey - to_mpq(m.s->y)) / m.edy);
+        const mpq_class lambda = m.x_moves ? mpq_class((m.ex - to_mpq(m.s->x)) / m.edx)
+                                           : mpq_class((m.ey - to_mpq(m.s->y)) / m.edy);
         const mpq_class z = to_mpq(m.s->z) + lambda * (to_mpq(m.t->z) - to_mpq(m.s->z));
         return to_mpq(f.a) * m.ex + to_mpq(f.b) * m.ey + to_mpq(f.c) - z;
       });

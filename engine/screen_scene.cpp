@@ -223,9 +223,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     for (const Sharer& s : wp.sharers) {
       c.sharers.push_back(s.facet);
       // A facet not cut at the near plane keeps its vertices: its edge k is the world's.
-      const auto& wv = wf.facets[s.facet].v;
-      const bool whole = std::all_of(wv.begin(), wv.end(), [&](std::uint32_t id) { return front[id] != 0; });
-      c.sharer_edge.push_back(whole ? s.edge : -1);
+      c.sharer_edge.push_back(clip_edges[s.facet].empty() && !ss.facets[s.facet].v.empty() ? s.edge : -1);
       if (wf.facets[s.facet].role[s.edge] == EdgeRole::Boundary) c.faces.push_back(wf.facets[s.facet].face);
       const Facet& f = ss.facets[s.facet];
       any_occluder |= f.occluder || (!f.v.empty() && f.facing == Facing::EdgeOn);
