@@ -175,7 +175,8 @@ struct Assembly {
 };
 
 // Vertical ray shooting: edges by columns of x (doubles), each edge in every
-// column its x-range meets.
+// column its x-range meets. About sqrt(E) columns; fewer where long edges would
+// make the lists longer than 8 entries per edge (memory stays linear).
 struct Columns {
   double x0 = 0, width = 1;
   int n = 1;
@@ -190,13 +191,21 @@ struct Columns {
       lo = std::min(lo, approx_point(p).x().inf());
       hi = std::max(hi, approx_point(p).x().sup());
     }
-    n = static_cast<int>(std::clamp(std::sqrt(static_cast<double>(E)), 1.0, 65536.0));
     x0 = lo;
-    width = hi > lo ? (hi - lo) / n : 1;
     auto range = [&](std::size_t e, int& c0, int& c1) {
       c0 = column(approx_point(g.points[g.ends[e][0]]).x().inf());
       c1 = column(approx_point(g.points[g.ends[e][1]]).x().sup());
     };
+    for (n = static_cast<int>(std::clamp(std::sqrt(static_cast<double>(E)), 1.0, 65536.0));; n = std::max(1, n / 4)) {
+      width = hi > lo ? (hi - lo) / n : 1;
+      std::size_t total = 0;
+      for (std::size_t e = 0; e < E; ++e) {
+        int c0, c1;
+        range(e, c0, c1);
+        total += static_cast<std::size_t>(c1 - c0 + 1);
+      }
+      if (n == 1 || total <= 8 * E) break;
+    }
     first.assign(n + 1, 0);
     for (std::size_t e = 0; e < E; ++e) {
       int c0, c1;
