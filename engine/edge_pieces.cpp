@@ -1,10 +1,13 @@
 #include "engine/edge_pieces.h"
 
+#include <CGAL/Interval_nt.h>
 #include <gmpxx.h>
 
 #include <algorithm>
 #include <array>
-#include <functional>
+#include <bit>
+#include <cmath>
+#include <cstring>
 
 namespace vismap::engine {
 namespace {
@@ -12,23 +15,22 @@ namespace {
 struct Edge {
   int facet;
   std::uint8_t edge;
+  std::uint8_t axis;    // the first axis along which the edge moves
   std::uint32_t p, q;   // vertex ids, facet order
 };
+
+double coord(const Vec3& v, int k) { return k == 0 ? v.x : k == 1 ? v.y : v.z; }
 
 // The supporting line of p->q as an exact canonical key: the first axis k along
 // which the line moves, the slopes d_j/d_k and the offsets at x_k = 0.
 struct LineKey {
   int axis = 0;
   std::array<mpq_class, 4> r;
-  std::size_t hash = 0;
 };
 
-double coord(const Vec3& v, int k) { return k == 0 ? v.x : k == 1 ? v.y : v.z; }
-
-LineKey line_key(const Vec3& p, const Vec3& q) {
+LineKey line_key(const Vec3& p, const Vec3& q, int k) {
   LineKey key;
-  while (coord(p, key.axis) == coord(q, key.axis)) ++key.axis;   // p != q
-  const int k = key.axis;
+  key.axis = k;
   mpq_class pk(coord(p, k)), dk = mpq_class(coord(q, k)) - pk;
   int slot = 0;
   for (int j = 0; j < 3; ++j) {
@@ -39,17 +41,10 @@ LineKey line_key(const Vec3& p, const Vec3& q) {
     key.r[slot + 2] = pj - pk * slope;
     ++slot;
   }
-  std::size_t h = std::hash<int>()(k);
-  for (auto& x : key.r) h = h * 0x9E3779B97F4A7C15ull ^ std::hash<double>()(x.get_d() + 0.0);
-  key.hash = h;
   return key;
 }
 
-bool same_line(const LineKey& a, const LineKey& b) {
-  return a.axis == b.axis && a.r == b.r;
-}
 bool key_less(const LineKey& a, const LineKey& b) {
-  if (a.hash != b.hash) return a.hash < b.hash;
   if (a.axis != b.axis) return a.axis < b.axis;
   for (int i = 0; i < 4; ++i) {
     int c = cmp(a.r[i], b.r[i]);
@@ -58,28 +53,121 @@ bool key_less(const LineKey& a, const LineKey& b) {
   return false;
 }
 
+// Lines are first told apart without GMP. Each key value falls in a cell: the
+// reals truncated (towards zero) to 1 + cell_bits significant bits. An edge whose key
+// values' intervals each lie inside one cell has its line's cells; one whose
+// intervals straddle a border takes the cells of its exact key. Edges on one
+// line thus always share their cells, and an edge alone in its cells (or
+// sharing them only with edges between the same two vertices) is alone on its
+// line: exact keys are needed only where cells are shared by other edges.
+struct Cells {
+  std::uint64_t mask;   // keeps the sign, the exponent and the leading mantissa bits
+  explicit Cells(int bits) : mask(~((std::uint64_t(1) << (52 - std::clamp(bits, 0, 52))) - 1)) {}
+  std::uint64_t of(double x) const {
+    if (x == 0) return 0;   // (+0 and -0)
+    std::uint64_t b;
+    std::memcpy(&b, &x, sizeof b);
+    return b & mask;
+  }
+};
+
+std::uint64_t mix(std::uint64_t h, std::uint64_t x) {
+  h ^= x + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
+  return h * 0xBF58476D1CE4E5B9ull;
+}
+
+std::uint64_t cells_of(const LineKey& key, const Cells& cells) {
+  std::uint64_t h = mix(0, static_cast<std::uint64_t>(key.axis));
+  for (const mpq_class& x : key.r) h = mix(h, cells.of(x.get_d()));   // (get_d truncates)
+  return h;
+}
+
+// The cells of the line through p and q, from intervals; false where an
+// interval is not inside one cell of moderate magnitude.
+bool cells_from_intervals(const Vec3& p, const Vec3& q, int k, const Cells& cells, std::uint64_t& h) {
+  using I = CGAL::Interval_nt<false>;
+  const I pk(coord(p, k)), dk = I(coord(q, k)) - pk;
+  std::array<I, 4> r;
+  int slot = 0;
+  for (int j = 0; j < 3; ++j) {
+    if (j == k) continue;
+    const I pj(coord(p, j)), slope = (I(coord(q, j)) - pj) / dk;
+    r[slot] = slope;
+    r[slot + 2] = pj - pk * slope;
+    ++slot;
+  }
+  h = mix(0, static_cast<std::uint64_t>(k));
+  for (const I& x : r) {
+    const double lo = x.inf(), hi = x.sup();
+    if (lo == 0 && hi == 0) { h = mix(h, 0); continue; }
+    // Far from 1 (or not finite), leave it to GMP: mpq's get_d is then the judge.
+    const double m = std::max(std::abs(lo), std::abs(hi));
+    if (!(m < 0x1p900) || std::min(std::abs(lo), std::abs(hi)) < 0x1p-900) return false;
+    const std::uint64_t c = cells.of(lo);
+    if (c != cells.of(hi)) return false;
+    h = mix(h, c);
+  }
+  return true;
+}
+
 }  // namespace
 
-std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf) {
+std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, int cell_bits) {
+  const Cells cells(cell_bits);
   std::vector<Edge> edges;
   for (int f = 0; f < static_cast<int>(wf.facets.size()); ++f) {
     const auto& v = wf.facets[f].v;
-    for (std::size_t i = 0; i < v.size(); ++i)
-      edges.push_back(Edge{f, static_cast<std::uint8_t>(i), v[i], v[(i + 1) % v.size()]});
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const std::uint32_t p = v[i], q = v[(i + 1) % v.size()];
+      const Vec3 &a = scene.vertices[p], &b = scene.vertices[q];
+      const std::uint8_t axis = a.x != b.x ? 0 : a.y != b.y ? 1 : 2;   // (p != q)
+      edges.push_back(Edge{f, static_cast<std::uint8_t>(i), axis, p, q});
+    }
   }
-  std::vector<LineKey> keys(edges.size());
-  for (std::size_t e = 0; e < edges.size(); ++e)
-    keys[e] = line_key(scene.vertices[edges[e].p], scene.vertices[edges[e].q]);
-  std::vector<std::uint32_t> order(edges.size());
-  for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](auto x, auto y) {
-    if (key_less(keys[x], keys[y])) return true;
-    if (key_less(keys[y], keys[x])) return false;
-    return x < y;
+  auto vertex = [&](std::uint32_t id) -> const Vec3& { return scene.vertices[id]; };
+  auto exact_key = [&](const Edge& e) {
+    // Keyed from the lower vertex id so that both directions build the same numbers.
+    const std::uint32_t lo = std::min(e.p, e.q), hi = std::max(e.p, e.q);
+    return line_key(vertex(lo), vertex(hi), e.axis);
+  };
+
+  // Sort by (cells, vertex pair): runs of equal cells are candidate lines.
+  struct Slot {
+    std::uint64_t hash, pair;
+    std::uint32_t edge;
+  };
+  std::vector<Slot> slots(edges.size());
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    for (std::uint32_t i = 0; i < edges.size(); ++i) {
+      const Edge& e = edges[i];
+      const std::uint32_t lo = std::min(e.p, e.q), hi = std::max(e.p, e.q);
+      std::uint64_t h;
+      if (!cells_from_intervals(vertex(lo), vertex(hi), e.axis, cells, h)) {
+        CGAL::Protect_FPU_rounding<false> nearest;
+        h = cells_of(exact_key(e), cells);
+      }
+      slots[i] = Slot{h, std::uint64_t(lo) << 32 | hi, i};
+    }
+  }
+  std::sort(slots.begin(), slots.end(), [](const Slot& x, const Slot& y) {
+    if (x.hash != y.hash) return x.hash < y.hash;
+    if (x.pair != y.pair) return x.pair < y.pair;
+    return x.edge < y.edge;
   });
 
   std::vector<WorldPiece> pieces;
   pieces.reserve(edges.size() * 3 / 5);
+  auto sharer = [&](std::uint32_t ei) {
+    const Edge& e = edges[ei];
+    return Sharer{e.facet, e.edge, coord(vertex(e.p), e.axis) < coord(vertex(e.q), e.axis)};
+  };
+  auto by_facet = [](const Sharer& x, const Sharer& y) {
+    return x.facet < y.facet || (x.facet == y.facet && x.edge < y.edge);
+  };
+
+  // Edges of one exact line: sweep along its axis k; each elementary interval
+  // covered by at least one edge is a piece shared by all edges covering it.
   struct Event {
     double t;
     std::uint32_t vertex;
@@ -88,19 +176,15 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf) {
   };
   std::vector<Event> events;
   std::vector<std::uint32_t> active;
-  for (std::size_t lo = 0; lo < order.size();) {
-    std::size_t hi = lo + 1;
-    while (hi < order.size() && same_line(keys[order[lo]], keys[order[hi]])) ++hi;
-    const int k = keys[order[lo]].axis;
-    // Sweep the edges of this line along axis k; each elementary interval covered
-    // by at least one edge is a piece shared by all edges covering it.
+  auto sweep_line = [&](const std::uint32_t* line, std::size_t n) {
+    const int k = edges[line[0]].axis;
     events.clear();
-    for (std::size_t i = lo; i < hi; ++i) {
-      const Edge& e = edges[order[i]];
-      double tp = coord(scene.vertices[e.p], k), tq = coord(scene.vertices[e.q], k);
-      bool fwd = tp < tq;
-      events.push_back({fwd ? tp : tq, fwd ? e.p : e.q, order[i], true});
-      events.push_back({fwd ? tq : tp, fwd ? e.q : e.p, order[i], false});
+    for (std::size_t i = 0; i < n; ++i) {
+      const Edge& e = edges[line[i]];
+      const double tp = coord(vertex(e.p), k), tq = coord(vertex(e.q), k);
+      const bool fwd = tp < tq;
+      events.push_back({fwd ? tp : tq, fwd ? e.p : e.q, line[i], true});
+      events.push_back({fwd ? tq : tp, fwd ? e.q : e.p, line[i], false});
     }
     std::sort(events.begin(), events.end(), [](const Event& x, const Event& y) {
       return x.t < y.t || (x.t == y.t && x.start < y.start);
@@ -115,15 +199,45 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf) {
       }
       if (!active.empty() && j < events.size()) {
         WorldPiece piece{here, events[j].vertex, {}};
-        for (auto ei : active) {
-          const Edge& e = edges[ei];
-          piece.sharers.push_back(Sharer{e.facet, e.edge, coord(scene.vertices[e.p], k) < coord(scene.vertices[e.q], k)});
-        }
-        std::sort(piece.sharers.begin(), piece.sharers.end(),
-                  [](const Sharer& x, const Sharer& y) { return x.facet < y.facet || (x.facet == y.facet && x.edge < y.edge); });
+        for (auto ei : active) piece.sharers.push_back(sharer(ei));
+        std::sort(piece.sharers.begin(), piece.sharers.end(), by_facet);
         pieces.push_back(std::move(piece));
       }
       i = j;
+    }
+  };
+
+  std::vector<std::uint32_t> group;
+  std::vector<std::pair<LineKey, std::uint32_t>> keyed;
+  for (std::size_t lo = 0; lo < slots.size();) {
+    std::size_t hi = lo + 1;
+    bool one_pair = true;
+    for (; hi < slots.size() && slots[hi].hash == slots[lo].hash; ++hi) one_pair &= slots[hi].pair == slots[lo].pair;
+    if (one_pair) {
+      // Alone on its line (with any edges between the same two vertices): one piece.
+      const Edge& e = edges[slots[lo].edge];
+      const bool fwd = coord(vertex(e.p), e.axis) < coord(vertex(e.q), e.axis);
+      WorldPiece piece{fwd ? e.p : e.q, fwd ? e.q : e.p, {}};
+      for (std::size_t i = lo; i < hi; ++i) piece.sharers.push_back(sharer(slots[i].edge));
+      std::sort(piece.sharers.begin(), piece.sharers.end(), by_facet);
+      pieces.push_back(std::move(piece));
+    } else {
+      // Several vertex pairs share the cells: told apart by exact keys.
+      keyed.clear();
+      for (std::size_t i = lo; i < hi; ++i) keyed.emplace_back(exact_key(edges[slots[i].edge]), slots[i].edge);
+      std::sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) {
+        if (key_less(x.first, y.first)) return true;
+        if (key_less(y.first, x.first)) return false;
+        return x.second < y.second;
+      });
+      for (std::size_t a = 0; a < keyed.size();) {
+        std::size_t b = a + 1;
+        while (b < keyed.size() && !key_less(keyed[a].first, keyed[b].first)) ++b;
+        group.clear();
+        for (std::size_t i = a; i < b; ++i) group.push_back(keyed[i].second);
+        sweep_line(group.data(), group.size());
+        a = b;
+      }
     }
     lo = hi;
   }
