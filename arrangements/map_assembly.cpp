@@ -26,7 +26,7 @@ using namespace exact;
 const CGAL::Simple_cartesian<Interval>::Point_2& approx_point(const P2& p) { return p.approx(); }
 
 // Vertices: the distinct end points, numbered in lexicographic order.
-std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, std::vector<P2>& points) {
+std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph& g) {
   struct End {
     Interval x;   // sorts most pairs without touching the point
     const P2* p;
@@ -48,8 +48,8 @@ std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, std::vec
   std::sort(ends.begin(), ends.end(), [&](const End& a, const End& b) { return compare(a, b) == CGAL::SMALLER; });
   std::vector<int> vertex_of(ends.size());
   for (std::size_t k = 0; k < ends.size(); ++k) {
-    if (k == 0 || compare(ends[k - 1], ends[k]) != CGAL::EQUAL) points.push_back(*ends[k].p);
-    vertex_of[ends[k].at] = static_cast<int>(points.size()) - 1;
+    if (k == 0 || compare(ends[k - 1], ends[k]) != CGAL::EQUAL) g.add_point(*ends[k].p);
+    vertex_of[ends[k].at] = static_cast<int>(g.points.size()) - 1;
   }
   return vertex_of;
 }
@@ -138,7 +138,7 @@ struct Assembly {
         int h = h0;
         do {
           cycle[h] = c;
-          const auto &p = approx_point(at(source(h))), &q = approx_point(at(target(h)));
+          const auto &p = g.approx[source(h)], &q = g.approx[target(h)];
           area += p.x() * q.y() - q.x() * p.y();
           h = g.next[h];
         } while (h != h0);
@@ -187,14 +187,14 @@ struct Columns {
   explicit Columns(const MapGraph& g) {
     const std::size_t E = g.ends.size();
     double lo = HUGE_VAL, hi = -HUGE_VAL;
-    for (const P2& p : g.points) {
-      lo = std::min(lo, approx_point(p).x().inf());
-      hi = std::max(hi, approx_point(p).x().sup());
+    for (const auto& p : g.approx) {
+      lo = std::min(lo, p.x().inf());
+      hi = std::max(hi, p.x().sup());
     }
     x0 = lo;
     auto range = [&](std::size_t e, int& c0, int& c1) {
-      c0 = column(approx_point(g.points[g.ends[e][0]]).x().inf());
-      c1 = column(approx_point(g.points[g.ends[e][1]]).x().sup());
+      c0 = column(g.approx[g.ends[e][0]].x().inf());
+      c1 = column(g.approx[g.ends[e][1]].x().sup());
     };
     for (n = static_cast<int>(std::clamp(std::sqrt(static_cast<double>(E)), 1.0, 65536.0));; n = std::max(1, n / 4)) {
       width = hi > lo ? (hi - lo) / n : 1;
@@ -228,7 +228,7 @@ struct Columns {
 int face_below(const Assembly& a, const Columns& cols, int w) {
   const MapGraph& g = a.g;
   const P2& p = g.points[w];
-  const Interval px = approx_point(p).x();
+  const Interval px = g.approx[w].x();
   int best_vertex = -1, best_edge = -1;
   // Is vertex q above the best hit so far?
   auto vertex_higher = [&](int q) {
@@ -262,7 +262,7 @@ int face_below(const Assembly& a, const Columns& cols, int w) {
       if (e == best_edge) continue;   // listed in both columns
       const int iu = g.ends[e][0], iv = g.ends[e][1];
       const P2 &u = g.points[iu], &v = g.points[iv];
-      if (approx_point(u).x().inf() > px.sup() || approx_point(v).x().sup() < px.inf()) continue;
+      if (g.approx[iu].x().inf() > px.sup() || g.approx[iv].x().sup() < px.inf()) continue;
       const auto cu = CGAL::compare_x(u, p), cv = CGAL::compare_x(v, p);
       if (cu == CGAL::LARGER || cv == CGAL::SMALLER) continue;
       int q = -1;   // the hit is a vertex (the edge's highest point at p.x)
@@ -285,7 +285,7 @@ int face_below(const Assembly& a, const Columns& cols, int w) {
 
 void assemble_map(std::vector<MapPiece>& pieces, VisibilityMap& map) {
   MapGraph g;
-  std::vector<int> vertex_of = number_end_points(pieces, g.points);
+  std::vector<int> vertex_of = number_end_points(pieces, g);
 
   // Edges: pieces from the smaller end, those on the same two vertices merged.
   std::vector<int> order(pieces.size());

@@ -45,7 +45,7 @@ void build_map(std::vector<MapPiece>& pieces, VisibilityMap& map) {
   });
   for (Arr::Vertex_handle v : vertices) {
     v->set_data(static_cast<int>(g.points.size()));
-    g.points.push_back(v->point());
+    g.add_point(v->point());
   }
   std::vector<int> on_edge;
   for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {

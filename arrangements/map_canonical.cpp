@@ -99,7 +99,9 @@ void write_canonical(const MapGraph& g, VisibilityMap& map) {
                        CGAL::orientation(g.points[other_end(e1, w)], g.points[w], g.points[other_end(e2, w)]) ==
                            CGAL::COLLINEAR);
     }
-  // Exact coordinates of the vertices written, on first need.
+  // Exact coordinates of the vertices written: on first need while rings are
+  // traced, then all the others in vertex order (the lazy points lie scattered
+  // in memory; visiting them in order keeps the walk short).
   std::vector<Point2> exact_point(nverts);
   std::vector<char> have(nverts, 0);
   auto point = [&](int w) -> const Point2& {
@@ -110,6 +112,7 @@ void write_canonical(const MapGraph& g, VisibilityMap& map) {
     }
     return exact_point[w];
   };
+  std::vector<char> written(nverts, 0);
 
   // Regions: faces of one label joined across edges that separate nothing.
   // Rings are kept as vertex numbers until the end.
@@ -138,8 +141,8 @@ void write_canonical(const MapGraph& g, VisibilityMap& map) {
       int h = h0;
       do {
         visited[h] = 1;
-        if (essential[source(h)]) ring.push_back(source(h));
-        const auto &p = g.points[source(h)].approx(), &q = g.points[target(h)].approx();
+        if (essential[source(h)]) { ring.push_back(source(h)); written[source(h)] = 1; }
+        const auto &p = g.approx[source(h)], &q = g.approx[target(h)];
         area += p.x() * q.y() - q.x() * p.y();
         int nx = g.next[h];
         while (!boundary(nx)) nx = g.next[nx ^ 1];   // step over edges inside the region
@@ -175,21 +178,6 @@ void write_canonical(const MapGraph& g, VisibilityMap& map) {
     if (a.face != b.face) return a.face < b.face;
     return a.outer < b.outer;
   });
-  auto points_of = [&](const std::vector<int>& ids) {
-    std::vector<Point2> pts;
-    pts.reserve(ids.size());
-    for (int w : ids) pts.push_back(point(w));
-    return pts;
-  };
-  map.regions.reserve(found.size());
-  for (const Rings& r : found) {
-    Region out;
-    out.face = r.face;
-    out.outer = points_of(r.outer);
-    for (const auto& hole : r.holes) out.holes.push_back(points_of(hole));
-    map.regions.push_back(std::move(out));
-  }
-
   // Segments: maximal chains of drawn edges through superfluous vertices, each
   // walked from its smaller end (halfedges 2e run that way).
   struct Chain {
@@ -206,12 +194,35 @@ void write_canonical(const MapGraph& g, VisibilityMap& map) {
       cur = g.ends[o][0] == w ? 2 * o : 2 * o + 1;
     }
     chains.push_back(Chain{g.ends[e][0], target(cur), e});
+    written[g.ends[e][0]] = written[target(cur)] = 1;
   }
+  for (int w = 0; w < nverts; ++w)
+    if (written[w]) point(w);
+
+  auto points_of = [&](const std::vector<int>& ids) {
+    std::vector<Point2> pts;
+    pts.reserve(ids.size());
+    for (int w : ids) pts.push_back(point(w));
+    return pts;
+  };
+  map.regions.reserve(found.size());
+  for (const Rings& r : found) {
+    Region out;
+    out.face = r.face;
+    out.outer = points_of(r.outer);
+    for (const auto& hole : r.holes) out.holes.push_back(points_of(hole));
+    map.regions.push_back(std::move(out));
+  }
+
   std::sort(chains.begin(), chains.end(),
             [](const Chain& a, const Chain& b) { return std::pair(a.from, a.to) < std::pair(b.from, b.to); });
   map.segments.reserve(chains.size());
-  for (const Chain& c : chains)
+  for (std::size_t i = 0; i < chains.size(); ++i) {
+    // The faces lists lie with the engine's curves, in another order: fetch ahead.
+    if (i + 16 < chains.size()) __builtin_prefetch(g.attrs[chains[i + 16].edge].faces);
+    const Chain& c = chains[i];
     map.segments.push_back(Segment{point(c.from), point(c.to), g.attrs[c.edge].kind, *g.attrs[c.edge].faces});
+  }
 }
 
 VISMAP_KERNEL_END

@@ -4,6 +4,8 @@
 // map_canonical.cpp labels its faces and writes regions and segments from it.
 // Internal to the arrangements (kernel types).
 #pragma once
+#include <CGAL/Simple_cartesian.h>
+
 #include <array>
 #include <vector>
 
@@ -35,7 +37,14 @@ EdgeAttr edge_attr(const std::vector<MapPiece>& pieces, const int* on_edge, std:
 // its left; halfedge 2e + 1 is its twin. Vertices are numbered in the
 // lexicographic order of their points, so canonical order needs no coordinates.
 struct MapGraph {
+  using Approx = CGAL::Simple_cartesian<exact::Interval>::Point_2;
   std::vector<exact::P2> points;            // vertices, distinct, in lexicographic order
+  std::vector<Approx> approx;               // their intervals, side by side: the walks over
+                                            // the graph read these, not the lazy points
+  void add_point(const exact::P2& p) {
+    points.push_back(p);
+    approx.push_back(p.approx());
+  }
   std::vector<std::array<int, 2>> ends;     // edge -> (u, v)
   std::vector<EdgeAttr> attrs;              // edge -> attributes
   std::vector<int> next;                    // halfedge -> next halfedge around its face (face on the left)
