@@ -49,6 +49,25 @@ FT screen_number(const mpq_class& q) {
 }
 
 
+// sum_c m[c] v[c] + m[3] in doubles, where every product and every partial sum
+// is exact (checked: fma residuals and two-sum errors zero, nothing near
+// underflow or overflow); false otherwise. Views along an axis (CAD's front,
+// top and side views) project most vertices this way, without GMP.
+bool exact_in_doubles(const std::array<double, 4>& m, const Vec3& p, double& out) {
+  const double v[3] = {p.x, p.y, p.z};
+  double acc = m[3];
+  for (int c = 0; c < 3; ++c) {
+    if (m[c] == 0 || v[c] == 0) continue;
+    const double prod = m[c] * v[c];
+    if (!(std::abs(prod) > 0x1p-960 && std::abs(prod) < 0x1p960) || std::fma(m[c], v[c], -prod) != 0) return false;
+    const double sum = acc + prod, back = sum - acc;
+    if (!(std::abs(sum) < 0x1p960) || (acc - (sum - back)) + (prod - back) != 0) return false;
+    acc = sum;
+  }
+  out = acc;
+  return true;
+}
+
 CGAL::Bbox_2 box_of(const P3& p) {
   auto ix = CGAL::to_interval(p.x), iy = CGAL::to_interval(p.y);
   return CGAL::Bbox_2(ix.first, iy.first, ix.second, iy.second);
@@ -102,6 +121,15 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   mpq_class px, py, pz, hq[4];
   for (auto id : used) {
     const Vec3& p = scene.vertices[id];
+    if (!view.perspective) {
+      double d[3];
+      if (exact_in_doubles(view.m[0], p, d[0]) && exact_in_doubles(view.m[1], p, d[1]) &&
+          exact_in_doubles(view.m[2], p, d[2])) {
+        front[id] = 1;
+        sv[id] = P3{FT(d[0]), FT(d[1]), FT(d[2])};
+        continue;
+      }
+    }
     px = p.x; py = p.y; pz = p.z;
     for (int r = 0; r < (view.perspective ? 4 : 3); ++r) hq[r] = mq[r][0] * px + mq[r][1] * py + mq[r][2] * pz + mq[r][3];
     if (!view.perspective) hq[3] = 1;
@@ -164,6 +192,20 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
         });
     f.facing = s > 0 ? Facing::Front : s < 0 ? Facing::Back : Facing::EdgeOn;
     if (f.facing == Facing::EdgeOn) { ++edge_on; continue; }
+    f.box = box_of(f.v[0]);
+    for (const auto& p : f.v) f.box += box_of(p);
+    f.occluder = true;
+    // Parallel to the screen (every vertex at one depth, known exactly from its
+    // interval): depth = c. Common in views along an axis.
+    const Interval z0i = approx_of(f.v[0].z);
+    if (z0i.is_point() && std::all_of(f.v.begin(), f.v.end(), [&](const P3& p) {
+          const Interval zi = approx_of(p.z);
+          return zi.inf() == z0i.inf() && zi.sup() == z0i.sup();
+        })) {
+      f.a = f.b = FT(0);
+      f.c = FT(z0i.inf());
+      continue;
+    }
     // depth = a x + b y + c from three vertices that are not collinear on screen,
     // computed once in GMP (doubles in the float variant).
     const Num x0 = num(f.v[0].x), y0 = num(f.v[0].y), z0 = num(f.v[0].z);
@@ -179,9 +221,6 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
       f.c = FT(Num(z0 - a * x0 - b * y0));
       break;
     }
-    f.box = box_of(f.v[0]);
-    for (const auto& p : f.v) f.box += box_of(p);
-    f.occluder = true;
   }
   stats.count("culled_outside_view", outside);
   stats.count("culled_edge_on", edge_on);
