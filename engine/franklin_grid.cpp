@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
-#include <unordered_set>
 
 #include "engine/union_find.h"
 
@@ -341,8 +340,8 @@ bool intersection_segment(const Facet& A, const Facet& B, P2& p, P2& q) {
 // Faces that pierce each other: an intersection line for every pair of facets of
 // different faces that share a cell and cross inside both projections.
 void add_intersection_lines(Grid& g, ScreenScene& ss, Stats& stats) {
-  std::unordered_set<std::uint64_t> seen;
-  std::int64_t tested = 0, found = 0;
+  // Candidate pairs from every cell, each once (sorted, not hashed: no node per pair).
+  std::vector<std::uint64_t> pairs;
   std::vector<int> here;
   for (Cell& cell : g.cells) {
     here = cell.facets;
@@ -352,26 +351,35 @@ void add_intersection_lines(Grid& g, ScreenScene& ss, Stats& stats) {
         int fa = std::min(here[i], here[j]), fb = std::max(here[i], here[j]);
         const Facet &A = ss.facets[fa], &B = ss.facets[fb];
         if (A.face == B.face || !CGAL::do_overlap(A.box, B.box)) continue;
-        if (!seen.insert((static_cast<std::uint64_t>(fa) << 32) | static_cast<std::uint32_t>(fb)).second) continue;
-        ++tested;
-        P2 p, q;
-        if (!intersection_segment(A, B, p, q)) continue;
-        ++found;
-        Curve c;
-        c.s = P3(p, A.depth_at(p));
-        c.t = P3(q, A.depth_at(q));
-        c.sharers = {fa, fb};
-        c.sharer_edge = {-1, -1};
-        c.faces = {std::min(A.face, B.face), std::max(A.face, B.face)};
-        c.kind = EdgeKind::Intersection;
-        c.drawn = true;
-        c.order_face = c.faces[0];
-        auto ip = CGAL::to_interval(p.x()), jp = CGAL::to_interval(p.y());
-        auto iq = CGAL::to_interval(q.x()), jq = CGAL::to_interval(q.y());
-        c.box = CGAL::Bbox_2(ip.first, jp.first, ip.second, jp.second) +
-                CGAL::Bbox_2(iq.first, jq.first, iq.second, jq.second);
-        ss.curves.push_back(std::move(c));
+        // Depth ranges apart: no point of one is at the other's depth.
+        if (A.zhi < B.zlo || B.zhi < A.zlo) continue;
+        pairs.push_back((static_cast<std::uint64_t>(fa) << 32) | static_cast<std::uint32_t>(fb));
       }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  std::int64_t tested = 0, found = 0;
+  for (const std::uint64_t pair : pairs) {
+    const int fa = static_cast<int>(pair >> 32), fb = static_cast<int>(pair & 0xffffffffu);
+    const Facet &A = ss.facets[fa], &B = ss.facets[fb];
+    ++tested;
+    P2 p, q;
+    if (!intersection_segment(A, B, p, q)) continue;
+    ++found;
+    Curve c;
+    c.s = P3(p, A.depth_at(p));
+    c.t = P3(q, A.depth_at(q));
+    c.sharers = {fa, fb};
+    c.sharer_edge = {-1, -1};
+    c.faces = {std::min(A.face, B.face), std::max(A.face, B.face)};
+    c.kind = EdgeKind::Intersection;
+    c.drawn = true;
+    c.order_face = c.faces[0];
+    auto ip = CGAL::to_interval(p.x()), jp = CGAL::to_interval(p.y());
+    auto iq = CGAL::to_interval(q.x()), jq = CGAL::to_interval(q.y());
+    c.box = CGAL::Bbox_2(ip.first, jp.first, ip.second, jp.second) +
+            CGAL::Bbox_2(iq.first, jq.first, iq.second, jq.second);
+    ss.curves.push_back(std::move(c));
   }
   stats.count("facet_pairs_tested", tested);
   stats.count("intersection_lines", found);

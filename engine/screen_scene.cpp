@@ -193,7 +193,14 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     f.facing = s > 0 ? Facing::Front : s < 0 ? Facing::Back : Facing::EdgeOn;
     if (f.facing == Facing::EdgeOn) { ++edge_on; continue; }
     f.box = box_of(f.v[0]);
-    for (const auto& p : f.v) f.box += box_of(p);
+    f.zlo = HUGE_VAL;
+    f.zhi = -HUGE_VAL;
+    for (const auto& p : f.v) {
+      f.box += box_of(p);
+      const Interval z = approx_of(p.z);
+      f.zlo = std::min(f.zlo, z.inf());
+      f.zhi = std::max(f.zhi, z.sup());
+    }
     f.occluder = true;
     // Parallel to the screen (every vertex at one depth, known exactly from its
     // interval): depth = c. Common in views along an axis.

@@ -23,6 +23,7 @@ struct Facet {
   Facing facing = Facing::EdgeOn;
   FT a, b, c;                    // depth(x, y) = a x + b y + c   (not edge-on)
   CGAL::Bbox_2 box;              // contains the exact projection
+  double zlo = 0, zhi = 0;       // contains the exact depths over the facet (of its vertices)
   bool occluder = false;         // hides and labels: not edge-on, not culled
   bool planar = true;            // false: a fan piece of a non-planar polygon
   FT depth_at(const P2& p) const { return a * p.x() + b * p.y() + c; }
