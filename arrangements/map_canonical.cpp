@@ -106,8 +106,15 @@ void write_canonical(const MapGraph& g, VisibilityMap& map) {
   std::vector<char> have(nverts, 0);
   auto point = [&](int w) -> const Point2& {
     if (!have[w]) {
-      const auto& e = CGAL::exact(g.points[w]);
-      exact_point[w] = Point2{to_mpq(e.x()), to_mpq(e.y())};
+      const auto& ap = g.approx[w];
+      if (ap.x().is_point() && ap.y().is_point()) {
+        // An interval of one double holds the exact value: no exact evaluation
+        // (crossings of axis-parallel lines, input vertices in axis views).
+        exact_point[w] = Point2{mpq_class(ap.x().inf()), mpq_class(ap.y().inf())};
+      } else {
+        const auto& e = CGAL::exact(g.points[w]);
+        exact_point[w] = Point2{to_mpq(e.x()), to_mpq(e.y())};
+      }
       have[w] = 1;
     }
     return exact_point[w];
