@@ -16,6 +16,7 @@ struct Edge {
   int facet;
   std::uint8_t edge;
   std::uint8_t axis;    // the first axis along which the edge moves
+  bool forward;         // p -> q runs that axis upwards
   std::uint32_t p, q;   // vertex ids, facet order
 };
 
@@ -121,7 +122,7 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
       const std::uint32_t p = v[i], q = v[(i + 1) % v.size()];
       const Vec3 &a = scene.vertices[p], &b = scene.vertices[q];
       const std::uint8_t axis = a.x != b.x ? 0 : a.y != b.y ? 1 : 2;   // (p != q)
-      edges.push_back(Edge{f, static_cast<std::uint8_t>(i), axis, p, q});
+      edges.push_back(Edge{f, static_cast<std::uint8_t>(i), axis, coord(a, axis) < coord(b, axis), p, q});
     }
   }
   auto vertex = [&](std::uint32_t id) -> const Vec3& { return scene.vertices[id]; };
@@ -131,10 +132,12 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
     return line_key(vertex(lo), vertex(hi), e.axis);
   };
 
-  // Sort by (cells, vertex pair): runs of equal cells are candidate lines.
+  // Sort by (cells, vertex pair): runs of equal cells are candidate lines. Each
+  // slot carries its edge, so the runs are read in order.
   struct Slot {
     std::uint64_t hash, pair;
     std::uint32_t edge;
+    Edge e;
   };
   std::vector<Slot> slots(edges.size());
   {
@@ -147,7 +150,7 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
         CGAL::Protect_FPU_rounding<false> nearest;
         h = cells_of(exact_key(e), cells);
       }
-      slots[i] = Slot{h, std::uint64_t(lo) << 32 | hi, i};
+      slots[i] = Slot{h, std::uint64_t(lo) << 32 | hi, i, e};
     }
   }
   std::sort(slots.begin(), slots.end(), [](const Slot& x, const Slot& y) {
@@ -158,10 +161,7 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
 
   std::vector<WorldPiece> pieces;
   pieces.reserve(edges.size() * 3 / 5);
-  auto sharer = [&](std::uint32_t ei) {
-    const Edge& e = edges[ei];
-    return Sharer{e.facet, e.edge, coord(vertex(e.p), e.axis) < coord(vertex(e.q), e.axis)};
-  };
+  auto sharer = [](const Edge& e) { return Sharer{e.facet, e.edge, e.forward}; };
   auto by_facet = [](const Sharer& x, const Sharer& y) {
     return x.facet < y.facet || (x.facet == y.facet && x.edge < y.edge);
   };
@@ -199,7 +199,7 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
       }
       if (!active.empty() && j < events.size()) {
         WorldPiece piece{here, events[j].vertex, {}};
-        for (auto ei : active) piece.sharers.push_back(sharer(ei));
+        for (auto ei : active) piece.sharers.push_back(sharer(edges[ei]));
         std::sort(piece.sharers.begin(), piece.sharers.end(), by_facet);
         pieces.push_back(std::move(piece));
       }
@@ -215,16 +215,15 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
     for (; hi < slots.size() && slots[hi].hash == slots[lo].hash; ++hi) one_pair &= slots[hi].pair == slots[lo].pair;
     if (one_pair) {
       // Alone on its line (with any edges between the same two vertices): one piece.
-      const Edge& e = edges[slots[lo].edge];
-      const bool fwd = coord(vertex(e.p), e.axis) < coord(vertex(e.q), e.axis);
-      WorldPiece piece{fwd ? e.p : e.q, fwd ? e.q : e.p, {}};
-      for (std::size_t i = lo; i < hi; ++i) piece.sharers.push_back(sharer(slots[i].edge));
+      const Edge& e = slots[lo].e;
+      WorldPiece piece{e.forward ? e.p : e.q, e.forward ? e.q : e.p, {}};
+      for (std::size_t i = lo; i < hi; ++i) piece.sharers.push_back(sharer(slots[i].e));
       std::sort(piece.sharers.begin(), piece.sharers.end(), by_facet);
       pieces.push_back(std::move(piece));
     } else {
       // Several vertex pairs share the cells: told apart by exact keys.
       keyed.clear();
-      for (std::size_t i = lo; i < hi; ++i) keyed.emplace_back(exact_key(edges[slots[i].edge]), slots[i].edge);
+      for (std::size_t i = lo; i < hi; ++i) keyed.emplace_back(exact_key(slots[i].e), slots[i].edge);
       std::sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) {
         if (key_less(x.first, y.first)) return true;
         if (key_less(y.first, x.first)) return false;
@@ -241,7 +240,14 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
     }
     lo = hi;
   }
-  return pieces;
+  // In facet order (of each piece's first sharer; stable): the stages that read
+  // the pieces then walk the facets and vertices in order.
+  std::vector<std::uint32_t> first(wf.facets.size() + 1, 0);
+  for (const WorldPiece& p : pieces) ++first[p.sharers[0].facet + 1];
+  for (std::size_t f = 0; f < wf.facets.size(); ++f) first[f + 1] += first[f];
+  std::vector<WorldPiece> ordered(pieces.size());
+  for (WorldPiece& p : pieces) ordered[first[p.sharers[0].facet]++] = std::move(p);
+  return ordered;
 }
 
 }  // namespace vismap::engine

@@ -20,7 +20,7 @@ struct WorldPiece {
   std::vector<Sharer> sharers;    // every facet edge covering the piece
 };
 
-// Pieces in no particular order (deterministic). cell_bits sets how finely lines
+// Pieces in the order of their first sharing facet (then deterministic). cell_bits sets how finely lines
 // are told apart before exact keys decide (see edge_pieces.cpp); any value gives
 // the same pieces, only the work differs (tests vary it to reach every path).
 std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, int cell_bits = 20);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <type_traits>
 
+#include "engine/morton.h"
 #include "engine/union_find.h"
 
 namespace vismap::engine {
@@ -138,22 +139,6 @@ bool meets_cell(const P3& s, const P3& t, const std::array<Corner, 4>& c) {
   return false;
 }
 
-}  // namespace
-
-namespace {
-// Position of a point of the unit square along a Morton (Z-order) curve, 16 bits
-// per axis.
-std::uint32_t morton(double u, double v) {
-  auto spread = [](std::uint32_t x) {
-    x &= 0xffff;
-    x = (x | (x << 8)) & 0x00ff00ff;
-    x = (x | (x << 4)) & 0x0f0f0f0f;
-    x = (x | (x << 2)) & 0x33333333;
-    return (x | (x << 1)) & 0x55555555;
-  };
-  auto q = [](double t) { return static_cast<std::uint32_t>((t > 0 ? (t < 1 ? t : 1) : 0) * 65535.0); };   // NaN: 0
-  return spread(q(u)) | (spread(q(v)) << 1);
-}
 }  // namespace
 
 void order_spatially(ScreenScene& ss) {

@@ -1,10 +1,12 @@
 #include "engine/screen_scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "engine/culling.h"
 #include "engine/edge_pieces.h"
+#include "engine/morton.h"
 
 namespace vismap::engine {
 VISMAP_KERNEL_BEGIN
@@ -91,6 +93,49 @@ bool is_crease(const std::array<FT, 3>& n1, const std::array<FT, 3>& n2, double 
   return CGAL::is_negative(d) && d * d > c * c * l;
 }
 
+// World facets in the Morton order of their approximate screen centres (doubles:
+// only the order depends on them). Everything built from them (edge pieces,
+// screen facets, curves) then lies in memory roughly as on screen, and the
+// later stages (order_spatially refines it) walk it without cache misses.
+void order_on_screen(WorldFacets& wf, const Scene& scene, const View& view) {
+  const std::size_t n = wf.facets.size();
+  std::vector<std::array<double, 2>> centre(n);
+  double x0 = HUGE_VAL, y0 = HUGE_VAL, x1 = -HUGE_VAL, y1 = -HUGE_VAL;
+  for (std::size_t i = 0; i < n; ++i) {
+    double sx = 0, sy = 0;
+    for (auto id : wf.facets[i].v) {
+      const Vec3& p = scene.vertices[id];
+      auto row = [&](int r) { return view.m[r][0] * p.x + view.m[r][1] * p.y + view.m[r][2] * p.z + view.m[r][3]; };
+      const double w = view.perspective ? row(3) : 1;
+      sx += row(0) / w;
+      sy += row(1) / w;
+    }
+    const double k = static_cast<double>(wf.facets[i].v.size());
+    centre[i] = {sx / k, sy / k};
+    if (std::isfinite(centre[i][0]) && std::isfinite(centre[i][1])) {
+      x0 = std::min(x0, centre[i][0]);
+      x1 = std::max(x1, centre[i][0]);
+      y0 = std::min(y0, centre[i][1]);
+      y1 = std::max(y1, centre[i][1]);
+    }
+  }
+  const double w = x1 > x0 ? x1 - x0 : 1, h = y1 > y0 ? y1 - y0 : 1;
+  // The facets of one polygon (consecutive) share its first facet's key and so
+  // keep their order: which of them speaks for the polygon where several hold
+  // one edge (kinds, on fanned polygons) must not depend on the view.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> key(n);
+  for (std::size_t i = 0; i < n; ++i)
+    key[i] = {i > 0 && wf.facets[i].face == wf.facets[i - 1].face
+                  ? key[i - 1].first
+                  : morton((centre[i][0] - x0) / w, (centre[i][1] - y0) / h),
+              static_cast<std::uint32_t>(i)};
+  std::sort(key.begin(), key.end());   // ties by index: deterministic
+  std::vector<WorldFacet> facets;
+  facets.reserve(n);
+  for (const auto& [unused, i] : key) facets.push_back(std::move(wf.facets[i]));
+  wf.facets = std::move(facets);
+}
+
 }  // namespace
 
 FT depth_on(const Curve& c, const P2& p) { return depth_along(c.s, c.t, p); }
@@ -98,6 +143,7 @@ FT depth_on(const Curve& c, const P2& p) { return depth_along(c.s, c.t, p); }
 ScreenScene make_screen_scene(const Scene& scene, const View& view, const EngineOptions& opt,
                               Stats& stats) {
   WorldFacets wf = make_world_facets(scene);
+  order_on_screen(wf, scene, view);
   std::vector<WorldPiece> pieces = match_edges(scene, wf);
   stats.count("faces_degenerate_dropped", wf.degenerate);
   stats.count("faces_nonplanar_fanned", wf.nonplanar);

@@ -5,7 +5,7 @@
 #include <gmpxx.h>
 
 #include <algorithm>
-#include <unordered_map>
+#include <cstring>
 
 namespace vismap::engine {
 namespace {
@@ -155,20 +155,33 @@ WorldFacet triangle_facet(int face, const std::vector<std::uint32_t>& ids, std::
 }  // namespace
 
 std::vector<std::uint32_t> canonical_vertex_ids(const Scene& scene) {
-  struct Hash {
-    std::size_t operator()(const Vec3& p) const {
-      auto h = [](double d) { return std::hash<double>()(d + 0.0); };  // -0 == +0
-      return h(p.x) * 0x9E3779B97F4A7C15ull ^ h(p.y) * 0xC2B2AE3D27D4EB4Full ^ h(p.z);
+  // Open addressing over a power-of-two table (no node per vertex).
+  auto bits = [](double d) {
+    d += 0.0;   // -0 == +0
+    std::uint64_t b;
+    std::memcpy(&b, &d, sizeof b);
+    return b;
+  };
+  auto hash = [&](const Vec3& p) {
+    std::uint64_t h = bits(p.x) * 0x9E3779B97F4A7C15ull;
+    h = (h ^ (h >> 29) ^ bits(p.y)) * 0xBF58476D1CE4E5B9ull;
+    h = (h ^ (h >> 31) ^ bits(p.z)) * 0x94D049BB133111EBull;
+    return h ^ (h >> 32);
+  };
+  const std::size_t n = scene.vertices.size();
+  std::size_t cap = 16;
+  while (cap < 2 * n) cap *= 2;
+  constexpr std::uint32_t empty = 0xffffffffu;
+  std::vector<std::uint32_t> table(cap, empty);
+  std::vector<std::uint32_t> canon(n);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const Vec3& p = scene.vertices[i];
+    for (std::size_t k = hash(p) & (cap - 1);; k = (k + 1) & (cap - 1)) {
+      if (table[k] == empty) { table[k] = canon[i] = i; break; }
+      const Vec3& q = scene.vertices[table[k]];
+      if (p.x == q.x && p.y == q.y && p.z == q.z) { canon[i] = table[k]; break; }
     }
-  };
-  struct Eq {
-    bool operator()(const Vec3& a, const Vec3& b) const { return a.x == b.x && a.y == b.y && a.z == b.z; }
-  };
-  std::unordered_map<Vec3, std::uint32_t, Hash, Eq> first;
-  first.reserve(scene.vertices.size());
-  std::vector<std::uint32_t> canon(scene.vertices.size());
-  for (std::uint32_t i = 0; i < scene.vertices.size(); ++i)
-    canon[i] = first.emplace(scene.vertices[i], i).first->second;
+  }
   return canon;
 }
 
