@@ -34,9 +34,6 @@ int cell_index_of(const std::vector<double>& bounds, const Interval& iv, Exact&&
   while (i < last && !less(bounds[i + 1])) ++i;
   return i;
 }
-int exact_cell_index(const std::vector<double>& bounds, const FT& v) {
-  return cell_index_of(bounds, approx_of(v), [&] { return to_mpq(v); });
-}
 
 struct CellRange {
   int x0, x1, y0, y1;
@@ -82,8 +79,9 @@ CGAL::Sign orientation(const P3& u, const P3& v, const Corner& p) {
       });
 }
 
-bool in_cell(const Grid& g, int ix, int iy, const P2& p) {
-  return exact_cell_index(g.X, p.x()) == ix && exact_cell_index(g.Y, p.y()) == iy;
+bool in_cell(const Grid& g, int ix, int iy, const P2& p) {   // (no lazy coordinate built)
+  return cell_index_of(g.X, approx_x(p), [&] { return exact_x(p); }) == ix &&
+         cell_index_of(g.Y, approx_y(p), [&] { return exact_y(p); }) == iy;
 }
 
 // +1 for counter-clockwise facets, -1 for clockwise: the side their interior is on.
@@ -783,10 +781,19 @@ std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss,
   for (int ci = 0; ci < static_cast<int>(ss.curves.size()); ++ci) {
     const Curve& cv = ss.curves[ci];
     std::vector<P2>& pts = cuts[ci];
-    const P2 s = cv.s.xy(), t = cv.t.xy();
-    // 9a: sort along the curve (the order of the dominant coordinate).
-    const bool use_x = CGAL::compare(CGAL::abs(t.x() - s.x()), CGAL::abs(t.y() - s.y())) != CGAL::SMALLER;
-    const bool increasing = use_x ? s.x() < t.x() : s.y() < t.y();
+    const P2 &s = cv.s.xy(), &t = cv.t.xy();
+    // 9a: sort along the curve (the order of the dominant coordinate): |dx| >= |dy|,
+    // decided on the end points' numbers (no lazy coordinate or difference built).
+    const bool use_x = filtered_sign(
+                           [&] {
+                             return CGAL::abs(approx_of(cv.t.x) - approx_of(cv.s.x)) -
+                                    CGAL::abs(approx_of(cv.t.y) - approx_of(cv.s.y));
+                           },
+                           [&]() -> mpq_class {
+                             return abs(mpq_class(to_mpq(cv.t.x) - to_mpq(cv.s.x))) -
+                                    abs(mpq_class(to_mpq(cv.t.y) - to_mpq(cv.s.y)));
+                           }) != CGAL::NEGATIVE;
+    const bool increasing = (use_x ? CGAL::compare(cv.s.x, cv.t.x) : CGAL::compare(cv.s.y, cv.t.y)) == CGAL::SMALLER;
     auto key_less = [&](const P2& a, const P2& b) {   // predicates: no coordinates built
       return (use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b)) == (increasing ? CGAL::SMALLER : CGAL::LARGER);
     };
