@@ -26,7 +26,7 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   ScreenScene ss = make_screen_scene(scene, view, opt, st);
   st.time("project_and_cull", clock.lap());
 
-  order_spatially(ss);
+  // (Facets and curves are already in screen order: make_screen_scene.)
   // 2-4. The variable grid: B = c * min(sqrt(N), 1/L) cells per side.
   Grid grid = make_grid(ss, opt.grid_c, st);
   // 5. Faces into cells, with each cell's blocking face; 5c drops faces hidden everywhere.

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <type_traits>
 
-#include "engine/morton.h"
 #include "engine/union_find.h"
 
 namespace vismap::engine {
@@ -138,40 +137,6 @@ bool meets_cell(const P3& s, const P3& t, const std::array<Corner, 4>& c) {
 }
 
 }  // namespace
-
-void order_spatially(ScreenScene& ss) {
-  CGAL::Bbox_2 all;
-  for (const Facet& f : ss.facets) all += f.box;
-  for (const Curve& c : ss.curves) all += c.box;
-  const double w = std::max(all.xmax() - all.xmin(), 1e-300), h = std::max(all.ymax() - all.ymin(), 1e-300);
-  auto key = [&](const CGAL::Bbox_2& b) -> std::uint32_t {
-    if (!(b.xmin() <= b.xmax() && b.ymin() <= b.ymax())) return 0;   // no box (edge-on facet)
-    return morton(((b.xmin() + b.xmax()) / 2 - all.xmin()) / w, ((b.ymin() + b.ymax()) / 2 - all.ymin()) / h);
-  };
-  auto order = [&](std::size_t n, auto&& box_of) {
-    std::vector<std::pair<std::uint32_t, int>> k(n);
-    for (std::size_t i = 0; i < n; ++i) k[i] = {key(box_of(i)), static_cast<int>(i)};
-    std::sort(k.begin(), k.end());   // ties by index: deterministic
-    return k;
-  };
-  const auto fk = order(ss.facets.size(), [&](std::size_t i) { return ss.facets[i].box; });
-  std::vector<int> new_index(ss.facets.size());
-  std::vector<Facet> facets;
-  facets.reserve(ss.facets.size());
-  for (const auto& [unused, i] : fk) {
-    new_index[i] = static_cast<int>(facets.size());
-    facets.push_back(std::move(ss.facets[i]));
-  }
-  ss.facets = std::move(facets);
-  const auto ck = order(ss.curves.size(), [&](std::size_t i) { return ss.curves[i].box; });
-  std::vector<Curve> curves;
-  curves.reserve(ss.curves.size());
-  for (const auto& [unused, i] : ck) {
-    curves.push_back(std::move(ss.curves[i]));
-    for (int& s : curves.back().sharers) s = new_index[s];
-  }
-  ss.curves = std::move(curves);
-}
 
 // Steps 2-4: B = c * min(sqrt(N), 1/L) cells per side over the projected scene.
 Grid make_grid(const ScreenScene& ss, double c, Stats& stats) {

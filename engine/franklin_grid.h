@@ -29,9 +29,6 @@ struct VisiblePiece {
   bool boundary = false;        // this curve bounds a region here
 };
 
-// Facets and curves renumbered along a space-filling curve: the steps below then
-// visit the grid's cells (and memory) in nearly the order they lie in.
-void order_spatially(ScreenScene& ss);
 Grid make_grid(const ScreenScene& ss, double c, Stats& stats);                    // steps 2-4
 void bucket_facets(Grid& g, ScreenScene& ss, Stats& stats);                       // step 5
 void prune_facets(Grid& g, const ScreenScene& ss, Stats& stats);                  // step 6

@@ -96,7 +96,7 @@ bool is_crease(const std::array<FT, 3>& n1, const std::array<FT, 3>& n2, double 
 // World facets in the Morton order of their approximate screen centres (doubles:
 // only the order depends on them). Everything built from them (edge pieces,
 // screen facets, curves) then lies in memory roughly as on screen, and the
-// later stages (order_spatially refines it) walk it without cache misses.
+// later stages walk it in that order, without cache misses.
 void order_on_screen(WorldFacets& wf, const Scene& scene, const View& view) {
   const std::size_t n = wf.facets.size();
   std::vector<std::array<double, 2>> centre(n);
