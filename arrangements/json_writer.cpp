@@ -30,11 +30,11 @@ void point(std::string& out, const Point2& p) {
   out += ']';
 }
 
-void ring(std::string& out, const std::vector<Point2>& r) {
+void ring(std::string& out, const Ring& r, const std::vector<std::string>& text) {
   out += '[';
   for (std::size_t i = 0; i < r.size(); ++i) {
     if (i) out += ',';
-    point(out, r[i]);
+    out += text[r[i]];
   }
   out += ']';
 }
@@ -56,16 +56,19 @@ std::string to_json(const VisibilityMap& map) {
     }
     out += ']';
   }
+  // Each vertex's text once: most appear in several rings and segments.
+  std::vector<std::string> text(map.vertices.size());
+  for (std::size_t v = 0; v < map.vertices.size(); ++v) point(text[v], map.vertices[v]);
   out += "],\n\"regions\":[";
   for (std::size_t i = 0; i < map.regions.size(); ++i) {
     const Region& g = map.regions[i];
     out += i ? ",\n" : "\n";
     out += "{\"face\":" + std::to_string(g.face) + ",\"outer\":";
-    ring(out, g.outer);
+    ring(out, g.outer, text);
     out += ",\"holes\":[";
     for (std::size_t h = 0; h < g.holes.size(); ++h) {
       if (h) out += ',';
-      ring(out, g.holes[h]);
+      ring(out, g.holes[h], text);
     }
     out += "]}";
   }
@@ -74,9 +77,9 @@ std::string to_json(const VisibilityMap& map) {
     const Segment& s = map.segments[i];
     out += i ? ",\n" : "\n";
     out += "{\"from\":";
-    point(out, s.from);
+    out += text[s.from];
     out += ",\"to\":";
-    point(out, s.to);
+    out += text[s.to];
     out += ",\"kind\":\"";
     out += to_string(s.kind);
     out += "\",\"faces\":[";

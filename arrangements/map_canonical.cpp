@@ -99,25 +99,15 @@ void write_canonical(const MapGraph& g, VisibilityMap& map) {
                        CGAL::orientation(g.points[other_end(e1, w)], g.points[w], g.points[other_end(e2, w)]) ==
                            CGAL::COLLINEAR);
     }
-  // Exact coordinates of the vertices written: on first need while rings are
-  // traced, then all the others in vertex order (the lazy points lie scattered
-  // in memory; visiting them in order keeps the walk short).
-  std::vector<Point2> exact_point(nverts);
-  std::vector<char> have(nverts, 0);
-  auto point = [&](int w) -> const Point2& {
-    if (!have[w]) {
-      const auto& ap = g.approx[w];
-      if (ap.x().is_point() && ap.y().is_point()) {
-        // An interval of one double holds the exact value: no exact evaluation
-        // (crossings of axis-parallel lines, input vertices in axis views).
-        exact_point[w] = Point2{mpq_class(ap.x().inf()), mpq_class(ap.y().inf())};
-      } else {
-        const auto& e = CGAL::exact(g.points[w]);
-        exact_point[w] = Point2{to_mpq(e.x()), to_mpq(e.y())};
-      }
-      have[w] = 1;
-    }
-    return exact_point[w];
+  // A vertex's exact coordinates.
+  auto point = [&](int w) {
+    const auto& ap = g.approx[w];
+    if (ap.x().is_point() && ap.y().is_point())
+      // An interval of one double holds the exact value: no exact evaluation
+      // (crossings of axis-parallel lines, input vertices in axis views).
+      return Point2{mpq_class(ap.x().inf()), mpq_class(ap.y().inf())};
+    const auto& e = CGAL::exact(g.points[w]);
+    return Point2{to_mpq(e.x()), to_mpq(e.y())};
   };
   std::vector<char> written(nverts, 0);
 
@@ -160,7 +150,7 @@ void write_canonical(const MapGraph& g, VisibilityMap& map) {
     if (area.inf() <= 0 && area.sup() > 0) {
       mpq_class s2 = 0;
       for (std::size_t i = 0; i < ring.size(); ++i) {
-        const Point2 &p = point(ring[i]), &q = point(ring[(i + 1) % ring.size()]);
+        const Point2 p = point(ring[i]), q = point(ring[(i + 1) % ring.size()]);
         s2 += p.x * q.y - q.x * p.y;
       }
       outer = sgn(s2) > 0;
@@ -203,21 +193,27 @@ void write_canonical(const MapGraph& g, VisibilityMap& map) {
     chains.push_back(Chain{g.ends[e][0], target(cur), e});
     written[g.ends[e][0]] = written[target(cur)] = 1;
   }
+  // The written vertices, once each, numbered in vertex (lexicographic) order;
+  // rings and segments refer to them by number, so canonical order is kept.
+  std::vector<std::uint32_t> index(nverts, 0);
+  map.vertices.reserve(static_cast<std::size_t>(std::count(written.begin(), written.end(), 1)));
   for (int w = 0; w < nverts; ++w)
-    if (written[w]) point(w);
-
-  auto points_of = [&](const std::vector<int>& ids) {
-    std::vector<Point2> pts;
-    pts.reserve(ids.size());
-    for (int w : ids) pts.push_back(point(w));
-    return pts;
+    if (written[w]) {
+      index[w] = static_cast<std::uint32_t>(map.vertices.size());
+      map.vertices.push_back(point(w));
+    }
+  auto ring_of = [&](const std::vector<int>& ids) {
+    Ring out;
+    out.reserve(ids.size());
+    for (int w : ids) out.push_back(index[w]);
+    return out;
   };
   map.regions.reserve(found.size());
   for (const Rings& r : found) {
     Region out;
     out.face = r.face;
-    out.outer = points_of(r.outer);
-    for (const auto& hole : r.holes) out.holes.push_back(points_of(hole));
+    out.outer = ring_of(r.outer);
+    for (const auto& hole : r.holes) out.holes.push_back(ring_of(hole));
     map.regions.push_back(std::move(out));
   }
 
@@ -228,7 +224,7 @@ void write_canonical(const MapGraph& g, VisibilityMap& map) {
     // The faces lists lie with the engine's curves, in another order: fetch ahead.
     if (i + 16 < chains.size()) __builtin_prefetch(g.attrs[chains[i + 16].edge].faces);
     const Chain& c = chains[i];
-    map.segments.push_back(Segment{point(c.from), point(c.to), g.attrs[c.edge].kind, *g.attrs[c.edge].faces});
+    map.segments.push_back(Segment{index[c.from], index[c.to], g.attrs[c.edge].kind, *g.attrs[c.edge].faces});
   }
 }
 

@@ -40,8 +40,7 @@ struct Frame {
       xa = std::min(xa, x); xb = std::max(xb, x);
       ya = std::min(ya, y); yb = std::max(yb, y);
     };
-    for (const auto& r : map.regions) for (const auto& p : r.outer) grow(p);
-    for (const auto& s : map.segments) { grow(s.from); grow(s.to); }
+    for (const auto& p : map.vertices) grow(p);   // (every vertex is on an outer ring or a segment)
     if (xa > xb) { xa = ya = 0; xb = yb = 1; }
     const double extent = std::max({xb - xa, yb - ya, 1e-300});
     x0 = xa;
@@ -82,8 +81,8 @@ std::string to_svg(const VisibilityMap& map, const Scene& scene, const View& vie
     out += "<g stroke=\"none\" fill-rule=\"evenodd\">\n";
     for (const auto& r : map.regions) {
       out += "<path fill=\"" + fill_of(scene, view, r.face) + "\" d=\"";
-      auto ring = [&](const std::vector<Point2>& pts) {
-        for (std::size_t i = 0; i < pts.size(); ++i) out += (i ? " L" : "M") + frame.xy(pts[i]);
+      auto ring = [&](const Ring& r) {
+        for (std::size_t i = 0; i < r.size(); ++i) out += (i ? " L" : "M") + frame.xy(map.at(r[i]));
         out += " Z";
       };
       ring(r.outer);
@@ -96,7 +95,8 @@ std::string to_svg(const VisibilityMap& map, const Scene& scene, const View& vie
   std::snprintf(buf, sizeof buf, "<g stroke=\"black\" stroke-width=\"%.3f\" stroke-linecap=\"round\" fill=\"none\">\n",
                 std::max(0.5, opt.size / 1000));
   out += buf;
-  for (const auto& s : map.segments) out += "<path d=\"M" + frame.xy(s.from) + " L" + frame.xy(s.to) + "\"/>\n";
+  for (const auto& s : map.segments)
+    out += "<path d=\"M" + frame.xy(map.at(s.from)) + " L" + frame.xy(map.at(s.to)) + "\"/>\n";
   out += "</g>\n</svg>\n";
   return out;
 }

@@ -20,14 +20,19 @@ bool operator==(const Point2& a, const Point2& b);
 enum class EdgeKind { Border, Silhouette, Crease, Smooth, Intersection };
 const char* to_string(EdgeKind k);
 
+// Rings and segment ends are indices into VisibilityMap::vertices: each vertex
+// is stored (and converted, and written) once, however many rings and
+// segments meet there.
+using Ring = std::vector<std::uint32_t>;
+
 struct Region {
   int face = -1;                              // input face index
-  std::vector<Point2> outer;                  // counter-clockwise
-  std::vector<std::vector<Point2>> holes;     // each clockwise
+  Ring outer;                                 // counter-clockwise
+  std::vector<Ring> holes;                    // each clockwise
 };
 
 struct Segment {
-  Point2 from, to;                            // from < to (lexicographic)
+  std::uint32_t from = 0, to = 0;             // from < to (lexicographic)
   EdgeKind kind = EdgeKind::Border;
   std::vector<int> faces;                     // ascending
 };
@@ -52,8 +57,16 @@ struct VisibilityMap {
   std::size_t scene_faces = 0;
   bool perspective = false;
   Matrix4 view;                               // the exact matrix the engine used
+  std::vector<Point2> vertices;               // distinct, in lexicographic order
   std::vector<Region> regions;                // canonical order (see map_canonical.cpp)
   std::vector<Segment> segments;              // canonical order
+  const Point2& at(std::uint32_t v) const { return vertices[v]; }
+  std::vector<Point2> points(const Ring& r) const {   // (for readers that want coordinates)
+    std::vector<Point2> out;
+    out.reserve(r.size());
+    for (auto v : r) out.push_back(vertices[v]);
+    return out;
+  }
   Stats stats;
 };
 

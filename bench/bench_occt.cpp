@@ -154,7 +154,8 @@ Result run_vismap(const Scene& scene, const View& view) {
   VisibilityMap map = visibility_franklin(scene, view, EngineOptions{});
   double len = 0;
   for (const Segment& s : map.segments) {
-    const double dx = s.to.x.get_d() - s.from.x.get_d(), dy = s.to.y.get_d() - s.from.y.get_d();
+    const Point2 &from = map.at(s.from), &to = map.at(s.to);
+    const double dx = to.x.get_d() - from.x.get_d(), dy = to.y.get_d() - from.y.get_d();
     len += std::sqrt(dx * dx + dy * dy);
   }
   r.edges = map.segments.size();

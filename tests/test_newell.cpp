@@ -279,9 +279,11 @@ TEST(Lattice, CheckerAcceptsNewellsMaps) {
 
 bool has_segment(const vismap::VisibilityMap& m, const std::string& x0, const std::string& y0,
                  const std::string& x1, const std::string& y1) {
-  for (const auto& s : m.segments)
-    if (s.from.x == mpq_class(x0) && s.from.y == mpq_class(y0) && s.to.x == mpq_class(x1) && s.to.y == mpq_class(y1))
+  for (const auto& s : m.segments) {
+    const vismap::Point2 &from = m.at(s.from), &to = m.at(s.to);
+    if (from.x == mpq_class(x0) && from.y == mpq_class(y0) && to.x == mpq_class(x1) && to.y == mpq_class(y1))
       return true;
+  }
   return false;
 }
 
@@ -301,8 +303,10 @@ TEST(EdgeOn, LinePiercingAFaceIsCutWhereItComesOut) {
   EXPECT_EQ(map_json(m), map_json(vismap::visibility_franklin(sq, vismap::make_view(ortho({0, -1, 0}), sq), {})));
   // The map with that segment drawn whole (what Franklin wrote before the fix) is
   // rejected by the checker: its segment check cuts where the line pierces a plane.
+  m.vertices.push_back(vismap::Point2{-1, 0});
   for (auto& s : m.segments)
-    if (s.from.x == -4 && s.from.y == 1 && s.to.x == mpq_class(-7, 4)) s.to = vismap::Point2{-1, 0};
+    if (m.at(s.from).x == -4 && m.at(s.from).y == 1 && m.at(s.to).x == mpq_class(-7, 4))
+      s.to = static_cast<std::uint32_t>(m.vertices.size() - 1);
   sq.file = "pierce";
   EXPECT_FALSE(vismap_check::check_map(sq, vismap::to_json(m), {}).ok) << vismap::to_json(m);
   // Two triangles, the second seen edge-on: its nearer edge (depth -3t) is behind
@@ -363,8 +367,8 @@ void expect_painter_matches_map(const vismap::Scene& scene, const vismap::Camera
   std::vector<R> regions;
   double x0 = HUGE_VAL, y0 = HUGE_VAL, x1 = -HUGE_VAL, y1 = -HUGE_VAL;
   for (const auto& g : map.regions) {
-    R r{g.face, ring_of(g.outer), {}};
-    for (const auto& h : g.holes) r.holes.push_back(ring_of(h));
+    R r{g.face, ring_of(map.points(g.outer)), {}};
+    for (const auto& h : g.holes) r.holes.push_back(ring_of(map.points(h)));
     for (const auto& [x, y] : r.outer) { x0 = std::min(x0, x); x1 = std::max(x1, x); y0 = std::min(y0, y); y1 = std::max(y1, y); }
     regions.push_back(std::move(r));
   }

@@ -72,8 +72,8 @@ std::vector<char> near_boundary(const vismap::VisibilityMap& map, const raster::
     }
   };
   for (const auto& reg : map.regions) {
-    add_ring(reg.outer);
-    for (const auto& h : reg.holes) add_ring(h);
+    add_ring(map.points(reg.outer));
+    for (const auto& h : reg.holes) add_ring(map.points(h));
   }
   for (int j = 0; j < w.R; ++j)
     for (int i = 0; i < w.R; ++i) {
@@ -261,7 +261,17 @@ std::vector<std::int32_t> brute_labels(const vismap::VisibilityMap& map, const r
     mpq_class x0, x1, y0, y1;
   };
   std::vector<Box> boxes;
+  struct Rings {
+    int face;
+    std::vector<vismap::Point2> outer;
+    std::vector<std::vector<vismap::Point2>> holes;
+  };
+  std::vector<Rings> regions;
   for (const auto& reg : map.regions) {
+    regions.push_back({reg.face, map.points(reg.outer), {}});
+    for (const auto& h : reg.holes) regions.back().holes.push_back(map.points(h));
+  }
+  for (const auto& reg : regions) {
     Box b{reg.outer[0].x, reg.outer[0].x, reg.outer[0].y, reg.outer[0].y};
     for (const auto& p : reg.outer) {
       if (p.x < b.x0) b.x0 = p.x;
@@ -276,8 +286,8 @@ std::vector<std::int32_t> brute_labels(const vismap::VisibilityMap& map, const r
     for (int i = 0; i < w.R; ++i) {
       const mpq_class px(w.cx(i)), py(w.cy(j));
       std::int32_t label = -1;
-      for (std::size_t r = 0; r < map.regions.size(); ++r) {
-        const auto& reg = map.regions[r];
+      for (std::size_t r = 0; r < regions.size(); ++r) {
+        const auto& reg = regions[r];
         if (px < boxes[r].x0 || px > boxes[r].x1 || py < boxes[r].y0 || py > boxes[r].y1) continue;
         bool on = on_ring(reg.outer, px, py);
         for (const auto& h : reg.holes) on = on || on_ring(h, px, py);

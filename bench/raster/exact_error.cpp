@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <string>
 
@@ -42,8 +43,8 @@ class ExactRaster {
   ExactLabels run(RowFn&& row) {
     for (std::size_t r = 0; r < map_.regions.size(); ++r) {
       const Region& reg = map_.regions[r];
-      ring(reg.outer, static_cast<int>(r));
-      for (const auto& h : reg.holes) ring(h, static_cast<int>(r));
+      ring(map_.points(reg.outer), static_cast<int>(r));
+      for (const auto& h : reg.holes) ring(map_.points(h), static_cast<int>(r));
     }
     return sweep(row);
   }
@@ -327,8 +328,9 @@ LineError line_error(const VisibilityMap& map, const Image& image, const Window&
   };
 
   for (const Segment& s : map.segments) {
-    const double au = (s.from.x.get_d() - w.x0) * inv, av = (s.from.y.get_d() - w.y0) * inv;
-    const double bu = (s.to.x.get_d() - w.x0) * inv, bv = (s.to.y.get_d() - w.y0) * inv;
+    const Point2 &from = map.at(s.from), &to = map.at(s.to);
+    const double au = (from.x.get_d() - w.x0) * inv, av = (from.y.get_d() - w.y0) * inv;
+    const double bu = (to.x.get_d() - w.x0) * inv, bv = (to.y.get_d() - w.y0) * inv;
     const double du = bu - au, dv = bv - av;
     const double len = std::sqrt(du * du + dv * dv);   // pixels
     e.exact_length += len * w.pixel;
@@ -392,12 +394,35 @@ Point2 point(const Json& j) {
   return {rational(j.items[0]), rational(j.items[1])};
 }
 
-std::vector<Point2> points(const Json& j) {
-  if (!j.is(Json::Type::Array)) throw std::runtime_error("map JSON: a ring is an array of points");
-  std::vector<Point2> out;
-  for (const Json& p : j.items) out.push_back(point(p));
-  return out;
-}
+// The map's vertices as read, each once; numbered in lexicographic order at the end.
+struct VertexTable {
+  struct Less {   // lexicographic
+    bool operator()(const Point2& a, const Point2& b) const {
+      const int c = cmp(a.x, b.x);
+      return c ? c < 0 : a.y < b.y;
+    }
+  };
+  std::map<Point2, std::uint32_t, Less> id;
+  std::uint32_t of(const Json& j) { return id.emplace(point(j), static_cast<std::uint32_t>(id.size())).first->second; }
+  Ring ring(const Json& j) {
+    if (!j.is(Json::Type::Array)) throw std::runtime_error("map JSON: a ring is an array of points");
+    Ring out;
+    for (const Json& p : j.items) out.push_back(of(p));
+    return out;
+  }
+  void finish(VisibilityMap& map) {
+    std::vector<std::uint32_t> rank(id.size());
+    for (auto& [p, i] : id) {
+      rank[i] = static_cast<std::uint32_t>(map.vertices.size());
+      map.vertices.push_back(p);
+    }
+    for (Region& r : map.regions) {
+      for (auto& v : r.outer) v = rank[v];
+      for (auto& h : r.holes) for (auto& v : h) v = rank[v];
+    }
+    for (Segment& s : map.segments) { s.from = rank[s.from]; s.to = rank[s.to]; }
+  }
+};
 
 int integer(const Json& j) {
   if (!j.is(Json::Type::Number)) throw std::runtime_error("map JSON: expected an integer");
@@ -422,18 +447,19 @@ VisibilityMap read_map_json(std::string_view text) {
       throw std::runtime_error("map JSON: view_matrix must be 4x4");
     for (int c = 0; c < 4; ++c) map.view[r][c] = rational(m.items[r].items[c]);
   }
+  VertexTable vertices;
   for (const Json& r : need(doc, "regions", Json::Type::Array).items) {
     Region reg;
     reg.face = integer(need(r, "face", Json::Type::Number));
-    reg.outer = points(need(r, "outer", Json::Type::Array));
+    reg.outer = vertices.ring(need(r, "outer", Json::Type::Array));
     if (const Json* h = r.get("holes"))
-      for (const Json& ring : h->items) reg.holes.push_back(points(ring));
+      for (const Json& ring : h->items) reg.holes.push_back(vertices.ring(ring));
     map.regions.push_back(std::move(reg));
   }
   for (const Json& s : need(doc, "segments", Json::Type::Array).items) {
     Segment seg;
-    seg.from = point(need(s, "from", Json::Type::Array));
-    seg.to = point(need(s, "to", Json::Type::Array));
+    seg.from = vertices.of(need(s, "from", Json::Type::Array));
+    seg.to = vertices.of(need(s, "to", Json::Type::Array));
     const std::string& k = need(s, "kind", Json::Type::String).text;
     seg.kind = k == "border"        ? EdgeKind::Border
                : k == "silhouette"  ? EdgeKind::Silhouette
@@ -444,6 +470,7 @@ VisibilityMap read_map_json(std::string_view text) {
     for (const Json& f : need(s, "faces", Json::Type::Array).items) seg.faces.push_back(integer(f));
     map.segments.push_back(std::move(seg));
   }
+  vertices.finish(map);
   return map;
 }
 
