@@ -787,16 +787,30 @@ std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss,
                         cell_index_of(g.Y, probe.iy, [&] { probe.need_exact(); return probe.ey; }));
       covers.clear();
       const CGAL::Bbox_2 mbox(probe.ix.inf(), probe.iy.inf(), probe.ix.sup(), probe.iy.sup());
-      auto consider = [&](int fi) {
-        if (!CGAL::do_overlap(mbox, ss.facets[fi].box)) return;   // cheap: cannot cover m
+      // A facet of another face covering both sides of m strictly in front of
+      // the curve hides the piece, and no facet holding the curve (at the
+      // curve's depth) can then be nearest on either side: the piece is neither
+      // drawn nor a region boundary, and the rest of its cell need not be seen.
+      auto hides = [&](int fi, const Cover& c) {
+        return c.left && c.right && !std::binary_search(cv.faces.begin(), cv.faces.end(), ss.facets[fi].face) &&
+               depth_against_curve(ss.facets[fi], probe) == CGAL::NEGATIVE;
+      };
+      auto consider = [&](int fi) {   // true: fi hides the piece
+        if (!CGAL::do_overlap(mbox, ss.facets[fi].box)) return false;   // cheap: cannot cover m
         int own = -1;
         for (std::size_t j = 0; j < cv.sharers.size(); ++j)
           if (cv.sharers[j] == fi) own = cv.sharer_edge[j];
         Cover c;
-        if (cover_at(ss.facets[fi], probe, c, own)) { c.facet = fi; covers.push_back(c); }
+        if (!cover_at(ss.facets[fi], probe, c, own)) return false;
+        c.facet = fi;
+        covers.push_back(c);
+        return hides(fi, c);
       };
-      for (int fi : cell.facets) consider(fi);
-      if (cell.blocker >= 0) consider(cell.blocker);
+      bool hidden = false;
+      for (int fi : cell.facets)
+        if ((hidden = consider(fi))) break;
+      if (!hidden && cell.blocker >= 0) hidden = consider(cell.blocker);
+      if (hidden) continue;
       // Nearest face on each side (step 11).
       int bl = -1, br = -1;
       for (std::size_t i = 0; i < covers.size(); ++i) {
