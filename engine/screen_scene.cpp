@@ -150,47 +150,52 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   stats.count("faces_nonconvex_triangulated", wf.nonconvex);
   stats.count("facets", static_cast<std::int64_t>(wf.facets.size()));
 
-  // Each vertex is transformed once.
+  // Each vertex is transformed once. Its image is stored at its place in
+  // `used` (the order facets first use it: screen order), not at its input
+  // index, so that facets and curves read their vertices nearly in sequence.
   std::vector<std::uint32_t> used;
-  std::vector<char> is_used(scene.vertices.size(), 0);
+  std::vector<std::uint32_t> local(scene.vertices.size(), ~0u);   // input index -> place in used
   for (const auto& f : wf.facets)
-    for (auto id : f.v) if (!is_used[id]) { is_used[id] = 1; used.push_back(id); }
+    for (auto id : f.v)
+      if (local[id] == ~0u) { local[id] = static_cast<std::uint32_t>(used.size()); used.push_back(id); }
   std::vector<FT> hz;   // homogeneous Z, for clipping at the near plane (perspective)
-  if (view.perspective) hz.resize(scene.vertices.size());
-  std::vector<P3> sv(scene.vertices.size());
-  std::vector<char> front(scene.vertices.size(), 0);
+  if (view.perspective) hz.resize(used.size());
+  std::vector<P3> sv(used.size());
+  std::vector<char> front(used.size(), 0);
   // Input vertices: the exact image computed directly in GMP (a few products of
   // doubles), kept as leaves.
   std::array<std::array<mpq_class, 4>, 4> mq;
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) mq[r][c] = view.m[r][c];
   mpq_class px, py, pz, hq[4];
-  for (auto id : used) {
-    const Vec3& p = scene.vertices[id];
+  for (std::uint32_t u = 0; u < used.size(); ++u) {
+    const Vec3& p = scene.vertices[used[u]];
     if (!view.perspective) {
       double d[3];
       if (exact_in_doubles(view.m[0], p, d[0]) && exact_in_doubles(view.m[1], p, d[1]) &&
           exact_in_doubles(view.m[2], p, d[2])) {
-        front[id] = 1;
-        sv[id] = P3{FT(d[0]), FT(d[1]), FT(d[2])};
+        front[u] = 1;
+        sv[u] = P3{FT(d[0]), FT(d[1]), FT(d[2])};
         continue;
       }
     }
     px = p.x; py = p.y; pz = p.z;
     for (int r = 0; r < (view.perspective ? 4 : 3); ++r) hq[r] = mq[r][0] * px + mq[r][1] * py + mq[r][2] * pz + mq[r][3];
     if (!view.perspective) hq[3] = 1;
-    if (view.perspective) hz[id] = screen_number(hq[2]);
-    front[id] = !view.perspective || (sgn(hq[2]) > 0 && sgn(hq[3]) > 0);
-    if (!front[id]) continue;
+    if (view.perspective) hz[u] = screen_number(hq[2]);
+    front[u] = !view.perspective || (sgn(hq[2]) > 0 && sgn(hq[3]) > 0);
+    if (!front[u]) continue;
     if (view.perspective) for (int r = 0; r < 3; ++r) hq[r] /= hq[3];
-    sv[id] = P3{screen_number(hq[0]), screen_number(hq[1]), screen_number(hq[2])};
+    sv[u] = P3{screen_number(hq[0]), screen_number(hq[1]), screen_number(hq[2])};
   }
+  auto in_front = [&](std::uint32_t id) { return front[local[id]] != 0; };
+  auto image = [&](std::uint32_t id) -> const P3& { return sv[local[id]]; };
   auto world = [&](std::uint32_t id) {
     const Vec3& p = scene.vertices[id];
     return WorldPoint{FT(p.x), FT(p.y), FT(p.z)};
   };
   auto clip_point = [&](std::uint32_t a, std::uint32_t b) {
-    WorldPoint w = cut_at_near(world(a), world(b), hz[a], hz[b]);
+    WorldPoint w = cut_at_near(world(a), world(b), hz[local[a]], hz[local[b]]);
     Homogeneous h = transform(view, w.x, w.y, w.z);
     return P3{leaf(h.X / h.W), leaf(h.Y / h.W), FT(0)};   // on the near plane: depth 0 exactly
   };
@@ -205,13 +210,14 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     f.face = w.face;
     f.planar = w.planar;
     const std::size_t n = w.v.size();
+    f.v.reserve(n + 1);
     for (std::size_t k = 0; k < n; ++k) {
       std::uint32_t a = w.v[k], b = w.v[(k + 1) % n];
-      if (front[a]) f.v.push_back(sv[a]);
-      if (front[a] != front[b]) {
-        f.v.push_back(front[a] ? clip_point(a, b) : clip_point(b, a));
+      if (in_front(a)) f.v.push_back(image(a));
+      if (in_front(a) != in_front(b)) {
+        f.v.push_back(in_front(a) ? clip_point(a, b) : clip_point(b, a));
         // The cut runs from where the polygon leaves the front half-space to where it re-enters.
-        if (front[a]) clip_edges[fi].push_back(f.v.back());
+        if (in_front(a)) clip_edges[fi].push_back(f.v.back());
         else clip_edges[fi].insert(clip_edges[fi].begin(), f.v.back());
       }
     }
@@ -280,7 +286,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
 
   // Back faces of closed components seen from outside hide nothing that their
   // component's front faces do not already hide.
-  auto side = closed_component_sides(scene, wf, pieces, view, [&](std::uint32_t id) { return front[id] != 0; });
+  auto side = closed_component_sides(scene, wf, pieces, view, in_front);
   std::int64_t back = 0;
   for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) {
     Facet& f = ss.facets[fi];
@@ -349,11 +355,12 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     if (!c.faces.empty()) c.order_face = c.faces[0];
     // Clip at the near plane, project.
     std::uint32_t a = wp.a, b = wp.b;
-    if (!front[a] && !front[b]) { ++dropped_clipped; continue; }
-    c.s = front[a] ? sv[a] : clip_point(b, a);
-    c.t = front[b] ? sv[b] : clip_point(a, b);
-    c.vs = front[a] ? static_cast<long>(a) : -1;
-    c.vt = front[b] ? static_cast<long>(b) : -1;
+    const bool fa = in_front(a), fb = in_front(b);
+    if (!fa && !fb) { ++dropped_clipped; continue; }
+    c.s = fa ? image(a) : clip_point(b, a);
+    c.t = fb ? image(b) : clip_point(a, b);
+    c.vs = fa ? static_cast<long>(a) : -1;
+    c.vt = fb ? static_cast<long>(b) : -1;
     if (c.s.xy() == c.t.xy()) { ++dropped_point; continue; }   // seen end-on
     c.box = box_of(c.s) + box_of(c.t);
     ss.curves.push_back(std::move(c));
