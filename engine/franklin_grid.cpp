@@ -13,8 +13,14 @@ namespace {
 
 // Index of the cell holding double coordinate v: the last boundary <= v (clamped).
 int cell_index(const std::vector<double>& bounds, double v) {
-  int i = static_cast<int>(std::upper_bound(bounds.begin(), bounds.end(), v) - bounds.begin()) - 1;
-  return std::clamp(i, 0, static_cast<int>(bounds.size()) - 2);
+  // The cells are equal but for rounding: guess arithmetically, then step to
+  // the cell whose bounds hold v (as the binary search over bounds would find).
+  const int last = static_cast<int>(bounds.size()) - 2;
+  const double t = (v - bounds[0]) / (bounds[last + 1] - bounds[0]) * (last + 1);
+  int i = t > 0 ? (t < last ? static_cast<int>(t) : last) : 0;   // (NaN: 0)
+  while (i > 0 && v < bounds[i]) --i;
+  while (i < last && v >= bounds[i + 1]) ++i;
+  return i;
 }
 
 // The cell that holds a coordinate under the half-open rule [X_i, X_i+1) (the
