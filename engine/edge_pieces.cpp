@@ -245,8 +245,13 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
   std::vector<std::uint32_t> first(wf.facets.size() + 1, 0);
   for (const WorldPiece& p : pieces) ++first[p.sharers[0].facet + 1];
   for (std::size_t f = 0; f < wf.facets.size(); ++f) first[f + 1] += first[f];
-  std::vector<WorldPiece> ordered(pieces.size());
-  for (WorldPiece& p : pieces) ordered[first[p.sharers[0].facet]++] = std::move(p);
+  std::vector<std::uint32_t> place(pieces.size());
+  for (std::uint32_t i = 0; i < pieces.size(); ++i) place[first[pieces[i].sharers[0].facet]++] = i;
+  // Copied, not moved: each sharers list is then allocated in the final order,
+  // next to its neighbours', and read in sequence later.
+  std::vector<WorldPiece> ordered;
+  ordered.reserve(pieces.size());
+  for (std::uint32_t i : place) ordered.push_back(pieces[i]);
   return ordered;
 }
 
