@@ -112,6 +112,9 @@ bool same_plane(const Facet& f, const Facet& b) { return f.a == b.a && f.b == b.
 // the 4 corners (depths are affine, so everywhere, and in a neighbourhood), or in
 // b's very plane with a higher face index.
 bool behind_throughout(const Facet& f, const Facet& b, const std::array<Corner, 4>& c) {
+  // Depth ranges apart: b's depths over the cell (which it covers) are its
+  // vertices' convex combinations, as f's are over its own points.
+  if (f.zlo > b.zhi) return true;
   bool deeper = true;
   for (const Corner& p : c)
     if (depth_order(f, b, p) != CGAL::POSITIVE) { deeper = false; break; }
@@ -127,8 +130,11 @@ CGAL::Sign depth_above(const P3& p, const Facet& f) {
       });
 }
 
-// Both points strictly behind the plane of b: the whole segment is.
+// Both points strictly behind the plane of b: the whole segment is. (Used with b
+// a cell's blocker.)
 bool curve_behind(const Curve& cv, const Facet& b) {
+  // (Or all its depths beyond b's over the cell, which b covers: hidden there.)
+  if (std::min(approx_of(cv.s.z).inf(), approx_of(cv.t.z).inf()) > b.zhi) return true;
   return depth_above(cv.s, b) == CGAL::POSITIVE && depth_above(cv.t, b) == CGAL::POSITIVE;
 }
 
