@@ -104,11 +104,18 @@ class NearestRounding {   // undoes an UpwardRounding for a scope
   bool was_;
 };
 
+// The interval side, with everything it calls inlined (CGAL's interval product
+// is otherwise an out-of-line call in the hottest loops).
+template <class OnIntervals>
+[[gnu::flatten]] inline Interval on_intervals(OnIntervals& approx) {
+  return approx();
+}
+
 template <class OnIntervals, class OnRationals>
 CGAL::Sign filtered_sign(OnIntervals&& approx, OnRationals&& exact) {
   ++filter_counts.calls;
   if (rounding_upward) {
-    const Interval v = approx();
+    const Interval v = on_intervals(approx);
     if (v.inf() > 0) return CGAL::POSITIVE;
     if (v.sup() < 0) return CGAL::NEGATIVE;
     ++filter_counts.exact;
@@ -117,7 +124,7 @@ CGAL::Sign filtered_sign(OnIntervals&& approx, OnRationals&& exact) {
   }
   {
     CGAL::Protect_FPU_rounding<true> upward;
-    const Interval v = approx();
+    const Interval v = on_intervals(approx);
     if (v.inf() > 0) return CGAL::POSITIVE;
     if (v.sup() < 0) return CGAL::NEGATIVE;
   }
