@@ -326,20 +326,7 @@ void add_intersection_lines(Grid& g, ScreenScene& ss, Stats& stats) {
     P2 p, q;
     if (!intersection_segment(A, B, p, q)) continue;
     ++found;
-    Curve c;
-    c.s = P3(p, A.depth_at(p));
-    c.t = P3(q, A.depth_at(q));
-    c.sharers = {fa, fb};
-    c.sharer_edge = {-1, -1};
-    c.faces = {std::min(A.face, B.face), std::max(A.face, B.face)};
-    c.kind = EdgeKind::Intersection;
-    c.drawn = true;
-    c.order_face = c.faces[0];
-    auto ip = CGAL::to_interval(p.x()), jp = CGAL::to_interval(p.y());
-    auto iq = CGAL::to_interval(q.x()), jq = CGAL::to_interval(q.y());
-    c.box = CGAL::Bbox_2(ip.first, jp.first, ip.second, jp.second) +
-            CGAL::Bbox_2(iq.first, jq.first, iq.second, jq.second);
-    ss.curves.push_back(std::move(c));
+    ss.curves.push_back(intersection_curve(P3(p, A.depth_at(p)), P3(q, A.depth_at(q)), fa, fb, A.face, B.face));
   }
   stats.count("facet_pairs_tested", tested);
   stats.count("intersection_lines", found);

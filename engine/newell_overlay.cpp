@@ -351,17 +351,7 @@ void add_piercing_lines(ScreenScene& ss, Stats& stats) {
     P3 p, q;
     if (!piercing_segment(A, B, p, q)) return;
     ++found;
-    Curve c;
-    c.s = p;
-    c.t = q;
-    c.sharers = {fa, fb};
-    c.sharer_edge = {-1, -1};
-    c.faces = {std::min(A.face, B.face), std::max(A.face, B.face)};
-    c.kind = EdgeKind::Intersection;
-    c.drawn = true;
-    c.order_face = c.faces[0];
-    c.box = box_of({p, q});
-    lines.push_back(std::move(c));
+    lines.push_back(intersection_curve(p, q, fa, fb, A.face, B.face));
   });
   for (auto& c : lines) ss.curves.push_back(std::move(c));
   stats.count("facet_pairs_tested", tested);

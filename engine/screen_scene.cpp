@@ -140,6 +140,20 @@ void order_on_screen(WorldFacets& wf, const Scene& scene, const View& view) {
 
 FT depth_on(const Curve& c, const P2& p) { return depth_along(c.s, c.t, p); }
 
+Curve intersection_curve(const P3& s, const P3& t, int fa, int fb, int face_a, int face_b) {
+  Curve c;
+  c.s = s;
+  c.t = t;
+  c.sharers = {fa, fb};
+  c.sharer_edge = {-1, -1};
+  c.faces = {std::min(face_a, face_b), std::max(face_a, face_b)};
+  c.kind = EdgeKind::Intersection;
+  c.drawn = true;
+  c.order_face = c.faces[0];
+  c.box = box_of(s) + box_of(t);
+  return c;
+}
+
 ScreenScene make_screen_scene(const Scene& scene, const View& view, const EngineOptions& opt,
                               Stats& stats) {
   WorldFacets wf = make_world_facets(scene);

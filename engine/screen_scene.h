@@ -52,6 +52,10 @@ struct ScreenScene {
 ScreenScene make_screen_scene(const Scene& scene, const View& view, const EngineOptions& opt,
                               Stats& stats);
 
+// The intersection line from s to t of facets fa and fb (of faces face_a, face_b):
+// a curve drawn for both faces.
+Curve intersection_curve(const P3& s, const P3& t, int fa, int fb, int face_a, int face_b);
+
 // Depth along a curve at a screen point p on it (depth is affine along a screen line).
 FT depth_on(const Curve& c, const P2& p);
 
