@@ -81,7 +81,7 @@ void build_map_from_floats(std::vector<FloatPiece>& pieces, VisibilityMap& map) 
     ends.emplace_back(exact::FT(f.ax), exact::FT(f.ay), exact::FT(f.za));
     ends.emplace_back(exact::FT(f.bx), exact::FT(f.by), exact::FT(f.zb));
     mp.push_back(MapPiece{ends[ends.size() - 2].xy(), ends.back().xy(), &ends[ends.size() - 2], &ends.back(), f.left,
-                          f.right, f.drawn, f.kind, f.faces, f.order_face});
+                          f.right, f.visible, f.drawn, f.kind, f.faces, f.order_face});
   }
   assemble_map(mp, map);
 }

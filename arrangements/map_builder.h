@@ -14,7 +14,9 @@ struct MapPiece {
   const exact::P3 *s = nullptr, *t = nullptr;   // its line with depths (two points of it),
                                      // which ranks coincident lines
   int left = -1, right = -1;         // nearest face left / right of a -> b (-1: none)
-  bool drawn = false;                // a visible line
+  bool visible = false;              // a visible edge piece or intersection line: it competes
+                                     // with the lines coinciding with it, drawn or not
+  bool drawn = false;                // visible, and of a kind that is drawn
   EdgeKind kind = EdgeKind::Border;
   const std::vector<int>* faces = nullptr;
   int order_face = 0;                // lowest face index, for ties in depth
@@ -40,7 +42,7 @@ VISMAP_KERNEL_END
 struct FloatPiece {
   double ax, ay, bx, by, za, zb;
   int left = -1, right = -1;
-  bool drawn = false;
+  bool visible = false, drawn = false;
   EdgeKind kind = EdgeKind::Border;
   const std::vector<int>* faces = nullptr;
   int order_face = 0;

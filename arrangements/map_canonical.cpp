@@ -42,7 +42,9 @@ EdgeAttr edge_attr(const std::vector<MapPiece>& pieces, const int* on_edge, std:
   for (std::size_t k = 0; k < count; ++k) {
     const int pi = on_edge[k];
     const MapPiece& m = pieces[pi];
-    if (!m.drawn) continue;
+    // Every visible piece competes, drawn or not: a nearer smooth seam covers a
+    // farther border under it, and then nothing is drawn there.
+    if (!m.visible) continue;
     if (winner < 0) { winner = pi; continue; }
     if (!have_mid) { mid = CGAL::midpoint(a, b); have_mid = true; }
     const MapPiece& w = pieces[winner];
@@ -55,7 +57,7 @@ EdgeAttr edge_attr(const std::vector<MapPiece>& pieces, const int* on_edge, std:
                               (m.order_face == w.order_face && *m.faces < *w.faces))))
       winner = pi;
   }
-  if (winner >= 0) {
+  if (winner >= 0 && pieces[winner].drawn) {
     at.drawn = true;
     at.kind = pieces[winner].kind;
     at.faces = pieces[winner].faces;
@@ -81,13 +83,17 @@ void write_canonical(const MapGraph& g, VisibilityMap& map) {
     else if (l != x) throw std::logic_error("visibility map: inconsistent face labels (engine bug)");
   }
 
-  // Each vertex's degree and (for those of degree 2) its two edges.
+  // Each vertex's degree and (for those of degree 2) its two edges. An edge that is
+  // not drawn and separates nothing (a visible smooth piece inside one region) is
+  // no edge of the arrangement: it only kept a farther line from being drawn.
+  auto inert = [&](int e) { return !g.attrs[e].drawn && label[g.face[2 * e]] == label[g.face[2 * e + 1]]; };
   std::vector<int> degree(nverts, 0), two(2 * static_cast<std::size_t>(nverts), -1);
   for (int e = 0; e < nedges; ++e)
-    for (int w : g.ends[e]) {
-      if (degree[w] < 2) two[2 * w + degree[w]] = e;
-      ++degree[w];
-    }
+    if (!inert(e))
+      for (int w : g.ends[e]) {
+        if (degree[w] < 2) two[2 * w + degree[w]] = e;
+        ++degree[w];
+      }
   auto other_end = [&](int e, int w) { return g.ends[e][0] == w ? g.ends[e][1] : g.ends[e][0]; };
 
   // A vertex where two collinear edges of the same attributes meet is not a vertex.

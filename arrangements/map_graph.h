@@ -28,8 +28,9 @@ struct EdgeAttr {
 };
 
 // The attributes of an edge from the pieces lying on it (oriented like the edge):
-// the labels of any; where several drawn pieces coincide, the first in (depth,
-// face index, faces list) at the edge's midpoint is written.
+// the labels of any; where several visible pieces coincide, the first in (depth,
+// face index, faces list) at the edge's midpoint decides: the edge is drawn with
+// its kind and faces if it is drawn, and not drawn if it is not (a smooth seam).
 EdgeAttr edge_attr(const std::vector<MapPiece>& pieces, const int* on_edge, std::size_t count,
                    const exact::P2& a, const exact::P2& b);
 

@@ -60,7 +60,7 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   for (const VisiblePiece& p : pieces) {
     const Curve& c = ss.curves[p.curve];
     mp.push_back(FloatPiece{p.a.x(), p.a.y(), p.b.x(), p.b.y(), depth_on(c, p.a), depth_on(c, p.b), p.left,
-                            p.right, p.visible, c.kind, &c.faces, c.order_face});
+                            p.right, p.visible, p.visible && c.drawn, c.kind, &c.faces, c.order_face});
   }
   build_map_from_floats(mp, map);
 #else
@@ -68,7 +68,8 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   mp.reserve(pieces.size());
   for (const VisiblePiece& p : pieces) {
     const Curve& c = ss.curves[p.curve];
-    mp.push_back(MapPiece{p.a, p.b, &c.s, &c.t, p.left, p.right, p.visible, c.kind, &c.faces, c.order_face});
+    mp.push_back(MapPiece{p.a, p.b, &c.s, &c.t, p.left, p.right, p.visible, p.visible && c.drawn, c.kind, &c.faces,
+                          c.order_face});
   }
   assemble_map(mp, map);
 #endif

@@ -831,8 +831,9 @@ std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss,
                                                                      : (responsible(bl) || responsible(br));
       }
       // 9c: visible unless a face not sharing the curve covers both sides of m and
-      // comes before it in (depth, face index).
-      if (cv.drawn) {
+      // comes before it in (depth, face index). Edge pieces that are not drawn
+      // (smooth) too: where lines coincide, the first visible one decides.
+      if (!cv.faces.empty()) {
         vp.visible = true;
         for (std::size_t i = 0; i < covers.size() && vp.visible; ++i) {
           const int face = ss.facets[covers[i].facet].face;
@@ -850,7 +851,7 @@ std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss,
           if (both) vp.visible = false;
         }
       }
-      visible += vp.visible;
+      visible += vp.visible && cv.drawn;
       if (vp.visible || vp.boundary) out.push_back(std::move(vp));
     }
   }

@@ -25,7 +25,8 @@ struct VisiblePiece {
   P2 a, b;                      // along the curve's direction s -> t
   int curve = -1;
   int left = -1, right = -1;    // nearest face just left / right of the piece (-1: none)
-  bool visible = false;         // drawn curve, not hidden at its interior
+  bool visible = false;         // an edge piece or intersection line, not hidden at its interior
+                                // (drawn or not: a visible smooth seam covers lines behind it)
   bool boundary = false;        // this curve bounds a region here
 };
 

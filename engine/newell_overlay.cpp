@@ -493,20 +493,23 @@ std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Frag
       scan(true);
       const int left = top_left < 0 ? -1 : order[top_left].face;
       const int right = top_right < 0 ? -1 : order[top_right].face;
-      bool drawn = false;
-      if (cv.drawn) {
+      // Edge pieces that are not drawn (smooth) are judged too: where lines
+      // coincide on the screen, the first visible one decides, drawn or not.
+      bool seen = false;
+      if (!cv.faces.empty()) {
         if (top_left >= 0 && top_left == top_right && in_front(ss, cv, order[top_left], m)) {
-          drawn = false;
+          seen = false;
         } else {
           scan(false);
-          drawn = !painted_over(ss, order, cv, m, cov);
+          seen = !painted_over(ss, order, cv, m, cov);
         }
       }
+      const bool drawn = seen && cv.drawn;
       visible += drawn;
-      if (!drawn && left == right) { extend = false; continue; }
+      if (!seen && left == right) { extend = false; continue; }
       // The same as the piece before and no depth crossing between: one piece.
-      if (extend && !pts[k].depth_crossing && out.back().drawn == drawn && out.back().left == left &&
-          out.back().right == right) {
+      if (extend && !pts[k].depth_crossing && out.back().visible == seen && out.back().drawn == drawn &&
+          out.back().left == left && out.back().right == right) {
         out.back().b = pts[k + 1].p;
         continue;
       }
@@ -515,6 +518,7 @@ std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Frag
       mp.b = pts[k + 1].p;
       mp.left = left;
       mp.right = right;
+      mp.visible = seen;
       mp.drawn = drawn;
       mp.kind = cv.kind;
       mp.faces = &cv.faces;

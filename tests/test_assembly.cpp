@@ -51,7 +51,7 @@ PieceSet pieces_of(const std::vector<std::array<int, 4>>& segments, std::mt19937
   for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f)
     label[f] = f->is_unbounded() ? -1 : static_cast<int>(rng() % 4) - 1;
   PieceSet out;
-  out.faces = {{0}, {1}, {0, 2}};
+  out.faces = {{0}, {1}, {0, 2}, {0, 1}};
   out.lines.reserve(4 * arr.number_of_edges());
   for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
     const int copies = rng() % 5 == 0 ? 2 : 1;
@@ -63,10 +63,13 @@ PieceSet pieces_of(const std::vector<std::array<int, 4>>& segments, std::mt19937
       // Left of source -> target is the halfedge's face.
       m.left = label[flip ? e->twin()->face() : e->face()];
       m.right = label[flip ? e->face() : e->twin()->face()];
-      m.drawn = rng() % 2;
-      if (!m.drawn && m.left == m.right) m.drawn = true;   // an undrawn piece bounds something
-      const int kind = static_cast<int>(rng() % 3);
-      m.kind = kind == 2 ? EdgeKind::Intersection : EdgeKind::Border;
+      // Visible or not (a piece that is neither visible nor a boundary is never
+      // handed over); drawn where visible, except smooth seams (faces {0, 1}).
+      m.visible = rng() % 3 != 0;
+      if (!m.visible && m.left == m.right) m.visible = true;
+      const int kind = static_cast<int>(rng() % 4);
+      m.kind = kind == 2 ? EdgeKind::Intersection : kind == 3 ? EdgeKind::Smooth : EdgeKind::Border;
+      m.drawn = m.visible && m.kind != EdgeKind::Smooth;
       m.faces = &out.faces[kind];
       m.order_face = out.faces[kind][0];
       const FT z = static_cast<int>(rng() % 3);
@@ -149,7 +152,7 @@ TEST(Assembly, RefusesPiecesThatOverlapInPart) {
     MapPiece m;
     m.a = P2(x0, 0);
     m.b = P2(x1, 0);
-    m.drawn = true;
+    m.visible = m.drawn = true;
     m.faces = &faces;
     m.s = &s;
     m.t = &t;
@@ -162,6 +165,77 @@ TEST(Assembly, RefusesPiecesThatOverlapInPart) {
   std::vector<MapPiece> t_junction{piece(0, 4), piece(2, 2)};
   t_junction[1].b = P2(2, 3);
   EXPECT_THROW(assemble_map(t_junction, m), std::logic_error);
+}
+
+// A unit of square face 0 (lower-left corner at the origin, side 4), its four
+// borders drawn, with extra pieces along its bottom edge or inside it; depths 1
+// on the border, `z` on the extras.
+struct Square {
+  std::vector<int> border{0}, seam{0, 1};
+  std::vector<P3> lines;
+  std::vector<MapPiece> pieces;
+  Square() { lines.reserve(64); }
+  MapPiece& add(int x0, int y0, int x1, int y1, int left, int right, int z, bool visible, bool drawn,
+                EdgeKind kind = EdgeKind::Border) {
+    MapPiece m;
+    m.a = P2(x0, y0);
+    m.b = P2(x1, y1);
+    m.left = left;
+    m.right = right;
+    m.visible = visible;
+    m.drawn = drawn;
+    m.kind = kind;
+    m.faces = kind == EdgeKind::Smooth ? &seam : &border;
+    m.order_face = 0;
+    lines.emplace_back(FT(x0), FT(y0), FT(z));
+    lines.emplace_back(FT(x1), FT(y1), FT(z));
+    m.s = &lines[lines.size() - 2];
+    m.t = &lines.back();
+    pieces.push_back(m);
+    return pieces.back();
+  }
+  void frame(bool bottom) {   // counter-clockwise: face 0 on the left
+    if (bottom) add(0, 0, 4, 0, 0, -1, 1, true, true);
+    add(4, 0, 4, 4, 0, -1, 1, true, true);
+    add(4, 4, 0, 4, 0, -1, 1, true, true);
+    add(0, 4, 0, 2, 0, -1, 1, true, true);
+    add(0, 2, 0, 0, 0, -1, 1, true, true);
+  }
+};
+
+// The spec: where visible lines coincide, the first in (depth, face index) decides
+// the segment, drawn or not. A nearer smooth seam (visible, not drawn) covers a
+// farther border: nothing is drawn there; a farther seam does not.
+TEST(Assembly, NearerUndrawnLineCoversAFartherDrawnOne) {
+  for (bool builder_sweep : {false, true})
+    for (int seam_depth : {0, 2}) {
+      Square sq;
+      sq.frame(true);
+      sq.add(4, 0, 0, 0, -1, 0, seam_depth, true, false, EdgeKind::Smooth);
+      VisibilityMap m;
+      if (builder_sweep) build_map(sq.pieces, m);
+      else assemble_map(sq.pieces, m);
+      ASSERT_EQ(m.regions.size(), 1u);
+      EXPECT_EQ(m.regions[0].outer.size(), 4u);
+      EXPECT_EQ(m.segments.size(), seam_depth == 0 ? 3u : 4u) << "seam at depth " << seam_depth;
+    }
+}
+
+// An undrawn visible piece inside one region bounds nothing and is drawn nowhere:
+// it adds no vertex to the ring it touches (the left side's middle here).
+TEST(Assembly, UndrawnPieceInsideARegionAddsNoVertex) {
+  for (bool builder_sweep : {false, true}) {
+    Square sq;
+    sq.frame(true);
+    sq.add(0, 2, 2, 2, 0, 0, 0, true, false, EdgeKind::Smooth);
+    VisibilityMap m;
+    if (builder_sweep) build_map(sq.pieces, m);
+    else assemble_map(sq.pieces, m);
+    ASSERT_EQ(m.regions.size(), 1u);
+    EXPECT_EQ(m.regions[0].outer.size(), 4u);
+    EXPECT_EQ(m.vertices.size(), 4u);
+    EXPECT_EQ(m.segments.size(), 4u);
+  }
 }
 
 }  // namespace

@@ -63,11 +63,7 @@ TEST_P(Corpus, CheckerAcceptsTheMapAndRunsAreReproducible) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Degenerate, Corpus, ::testing::ValuesIn(corpus()),
-                         [](const auto& info) {
-                           std::string n = info.param.file.substr(0, info.param.file.find('.'));
-                           for (char& ch : n) if (!isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return n;
-                         });
+                         [](const auto& info) { return vismap_test::case_name(info.param.file, info.index); });
 
 // ---- seeded random scenes --------------------------------------------------------
 

@@ -184,10 +184,7 @@ std::vector<std::string> corpus_lines() {
 }
 
 INSTANTIATE_TEST_SUITE_P(Degenerate, Corpus, ::testing::ValuesIn(corpus_lines()), [](const auto& info) {
-  std::string n = info.param.substr(0, info.param.find('.'));
-  for (char& ch : n)
-    if (!isalnum(static_cast<unsigned char>(ch))) ch = '_';
-  return n;
+  return vismap_test::case_name(vismap_test::split_case(info.param).file, info.index);
 });
 
 class Random : public ::testing::TestWithParam<std::tuple<int, int>> {};

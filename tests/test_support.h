@@ -41,6 +41,15 @@ inline Case split_case(const std::string& line) {
   return {line.substr(0, tab), tab == std::string::npos ? "" : line.substr(tab + 1)};
 }
 
+// A test's name for a case line: the scene file's stem, and the line's number in
+// the list (a scene may appear with several views).
+inline std::string case_name(const std::string& file, std::size_t index) {
+  std::string n = file.substr(0, file.find('.'));
+  for (char& ch : n)
+    if (!isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  return n + "_" + std::to_string(index);
+}
+
 // The independent checker accepts `json` as the map of `scene`, having sampled it.
 inline void expect_checked(const vismap::Scene& scene, const std::string& json, const vismap_check::Options& opt,
                            const std::string& what) {

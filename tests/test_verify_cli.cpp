@@ -163,6 +163,7 @@ TEST(VerifyCli, RejectsEachKindOfWrongMap) {
   TempDir dir("verify_mutations");
   const std::string two = dir.write("two.off", kTwoSquares);
   const std::string seg20 = R"({"from":["2","0"],"to":["2","1"],"kind":"border","faces":[0]})";
+  const std::string seg10 = R"({"from":["1","0"],"to":["2","0"],"kind":"border","faces":[1]})";
   const std::vector<Mutation> mutations = {
       {"relabelled region", "", R"({"face":0,)", R"({"face":1,)", "FAIL regions: "},
       {"hidden line added", "", seg20, seg20 + ",\n" + R"({"from":["2","1"],"to":["2","2"],"kind":"border","faces":[0]})",
@@ -173,6 +174,11 @@ TEST(VerifyCli, RejectsEachKindOfWrongMap) {
       {"non-canonical number", "", R"(["2","0"])", R"(["4/2","0"])", "FAIL format: "},
       {"negative zero", "", R"(["0","0"])", R"(["-0","0"])", "FAIL format: "},
       {"wrong faces", "shared_edge_crease.off", R"("faces":[0,1])", R"("faces":[0])", "FAIL "},
+      // A farther border drawn where a nearer smooth seam (not drawn) is the first
+      // visible line: what both engines wrote before issue 17.
+      {"line under a smooth seam drawn", "seam_over_border.off", seg10,
+       seg10 + ",\n" + R"({"from":["1","1/5"],"to":["1","4/5"],"kind":"border","faces":[2]})",
+       "FAIL segment: "},
   };
   for (const Mutation& m : mutations) {
     SCOPED_TRACE(m.name);

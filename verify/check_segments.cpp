@@ -28,14 +28,13 @@ std::vector<std::size_t> segments_at(const MapDoc& doc, const P2& q) {
 }
 
 std::string why_nothing(const LineView& lv) {
+  auto first = lv.first_visible();
+  if (!first.empty() && !first[0]->drawn)
+    return "the first visible line there is not drawn (" + describe(first[0]->faces, first[0]->kind) + ")";
   const LineItem* hidden = nullptr;
-  const LineItem* undrawn = nullptr;
-  for (const LineItem& it : lv.items) {
+  for (const LineItem& it : lv.items)
     if (it.drawn && !it.visible && !hidden) hidden = &it;
-    if (!it.drawn && it.visible && !undrawn) undrawn = &it;
-  }
   if (hidden) return "the line there is hidden (" + describe(hidden->faces, hidden->kind) + ")";
-  if (undrawn) return "the only visible line there is not drawn (" + describe(undrawn->faces, undrawn->kind) + ")";
   return "no edge piece or intersection line lies there";
 }
 

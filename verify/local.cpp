@@ -32,17 +32,23 @@ PointLabel label_at(const Screen& sc, const P2& q) {
   return out;
 }
 
-std::vector<const LineItem*> LineView::first() const {
+std::vector<const LineItem*> LineView::first_visible() const {
   std::vector<const LineItem*> out;
   for (bool cuts : {false, true}) {
     const LineItem* best = nullptr;
     for (const LineItem& it : items)
-      if (it.cut == cuts && it.visible && it.drawn && (!best || it.before(*best))) best = &it;
+      if (it.cut == cuts && it.visible && (!best || it.before(*best))) best = &it;
     if (!best) continue;
     for (const LineItem& it : items)
-      if (it.cut == cuts && it.visible && it.drawn && it.same_key(*best)) out.push_back(&it);
+      if (it.cut == cuts && it.visible && it.same_key(*best)) out.push_back(&it);
     return out;
   }
+  return out;
+}
+
+std::vector<const LineItem*> LineView::first() const {
+  std::vector<const LineItem*> out = first_visible();
+  if (!out.empty() && !out[0]->drawn) out.clear();
   return out;
 }
 

@@ -45,8 +45,11 @@ struct LineView {
   // answer may differ from both sides; such points are skipped.
   bool clean = false;
   std::vector<LineItem> items;
-  // The visible, drawn items first in the order (several only on exact ties);
-  // near-plane cuts only where no edge piece or intersection line is visible.
+  // The visible items first in the order (several only on exact ties), drawn or
+  // not; near-plane cuts only where no edge piece or intersection line is visible.
+  std::vector<const LineItem*> first_visible() const;
+  // What the map draws there: first_visible(), or nothing where that is not drawn
+  // (a smooth seam in front covers the lines behind it, drawn or not).
   std::vector<const LineItem*> first() const;
 };
 
