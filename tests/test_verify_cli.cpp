@@ -121,9 +121,12 @@ TEST(VerifyCli, AcceptsTheEngineMapsOfTheCorpus) {
       if (args[i] == "--smooth") extra.push_back("--smooth");
       if (args[i] == "--crease") extra.insert(extra.end(), {"--crease", args[i + 1]});
     }
-    r = verify(dir, scene, map, extra);
-    EXPECT_EQ(r.status, 0) << file << "\n" << both(r);
-    EXPECT_EQ(r.out.rfind("OK: ", 0), 0u) << file << "\n" << both(r);
+    for (bool strict : {false, true}) {
+      if (strict) extra.push_back("--strict");
+      r = verify(dir, scene, map, extra);
+      EXPECT_EQ(r.status, 0) << file << (strict ? " (--strict)" : "") << "\n" << both(r);
+      EXPECT_EQ(r.out.rfind("OK: ", 0), 0u) << file << "\n" << both(r);
+    }
     ++n;
   }
   EXPECT_GE(n, 20);
@@ -193,7 +196,27 @@ TEST(VerifyCli, RejectsEachKindOfWrongMap) {
     EXPECT_EQ(r.status, 1) << both(r);
     EXPECT_NE(r.out.find(m.expect), std::string::npos) << "wanted '" << m.expect << "'\n" << both(r);
     EXPECT_NE(r.out.find("FAILED: "), std::string::npos) << both(r);
+    EXPECT_EQ(verify(dir, scene, bad, {"--strict"}).status, 1) << "--strict accepts it";
   }
+}
+
+// --strict recomputes, at every stretch of every line, which line the map must
+// draw there: under the issue-17 seam it finds the border drawn where the seam
+// (not drawn) is the first visible line, and says so.
+TEST(VerifyCli, StrictModeNamesTheStretch) {
+  TempDir dir("verify_strict");
+  const std::string scene = (kData / "seam_over_border.off").string(), good = dir.file("good.json"),
+                    bad = dir.file("bad.json");
+  ASSERT_EQ(vismap(dir, {scene, "--dir", "0,0,-1", "--json", good}).status, 0);
+  const std::string seg10 = R"({"from":["1","0"],"to":["2","0"],"kind":"border","faces":[1]})";
+  const std::string text = replace_once(
+      vismap_test::slurp(good), seg10, seg10 + ",\n" + R"({"from":["1","1/5"],"to":["1","4/5"],"kind":"border","faces":[2]})");
+  ASSERT_FALSE(text.empty());
+  std::ofstream(bad, std::ios::binary) << text;
+  const Result r = verify(dir, scene, bad, {"--strict"});
+  EXPECT_EQ(r.status, 1) << both(r);
+  EXPECT_NE(r.out.find("FAIL strict: segments["), std::string::npos) << both(r);
+  EXPECT_NE(r.out.find("the first visible line there is not drawn (smooth [0,1])"), std::string::npos) << both(r);
 }
 
 }  // namespace

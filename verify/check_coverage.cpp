@@ -122,19 +122,50 @@ bool hidden_at(const Screen& sc, const P2& q, const mpq_class& d, const std::vec
   return false;
 }
 
+// Strict mode, at a clean point q on a line (never a map vertex): the map has a
+// segment there exactly when the spec's first visible line there is drawn, and
+// then with its kind and faces; where that line is not drawn (a smooth seam) or
+// nothing is visible, no segment. The winner is recomputed from look_along's
+// items alone, whatever line q was reached from.
+void require_winner(Context& c, const P2& q, const LineView& lv) {
+  ++c.rep.edge_points_checked;
+  const auto first = lv.first();
+  const std::vector<std::size_t> at = segments_at(c.doc, q);
+  if (first.empty()) {
+    if (!at.empty())
+      c.fail.add("strict: segments[" + std::to_string(at[0]) + "] " + describe(c.doc.segments[at[0]]) + " at " +
+                 str(q) + ": " + why_nothing(lv));
+    return;
+  }
+  if (at.empty()) {
+    c.fail.add("strict: no segment at " + str(q) + " where " + describe(first[0]->faces, first[0]->kind) +
+               " is the first visible line");
+    return;
+  }
+  for (std::size_t i : at) {
+    const MapSegment& seg = c.doc.segments[i];
+    bool match = false;
+    for (const LineItem* it : first) match = match || (it->kind == seg.kind && it->faces == seg.faces);
+    if (!match)
+      c.fail.add("strict: segments[" + std::to_string(i) + "] " + describe(seg) + " at " + str(q) +
+                 ": the first visible line there is " + describe(first[0]->faces, first[0]->kind));
+  }
+}
+
 // Calls f(q, depth) at the midpoint of every stretch of a -> b that is not
-// plainly hidden.
+// plainly hidden (in strict mode, of every stretch: no shortcut).
 template <class F>
 void for_each_stretch(const Context& c, const P2& a, const P2& b, const mpq_class& da, const mpq_class& db,
                       const std::vector<std::uint32_t>& own, F&& f) {
   const Screen& sc = c.sc;
-  if (buried(sc, a, b, da, db, own)) return;
+  const bool strict = c.opt.strict;
+  if (!strict && buried(sc, a, b, da, db, own)) return;
   std::vector<mpq_class> ts = stretch_params(sc, c.doc, a, b, da, db);
   for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
     mpq_class t = (ts[k] + ts[k + 1]) / 2;
     P2 q{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)};
     mpq_class d = da + t * (db - da);
-    if (!hidden_at(sc, q, d, own)) f(q, d);
+    if (strict || !hidden_at(sc, q, d, own)) f(q, d);
   }
 }
 
@@ -151,6 +182,7 @@ void edges(Context& c) {
       for_each_stretch(c, a, b, p.depth[i], p.depth[(i + 1) % n], {p.face}, [&](const P2& q, const mpq_class& d) {
         LineView lv = look_along(c.sc, q, s);
         if (!lv.clean) return;
+        if (c.opt.strict) return require_winner(c, q, lv);
         const LineItem* mine = nullptr;
         for (const LineItem& it : lv.items)
           if (it.kind != Kind::Intersection && !it.cut && it.depth == d) mine = &it;
@@ -218,6 +250,7 @@ void intersections(Context& c) {
         for_each_stretch(c, a, b, p.depth_at(a), p.depth_at(b), faces, [&](const P2& q, const mpq_class&) {
           LineView lv = look_along(c.sc, q, dir);
           if (!lv.clean) return;
+          if (c.opt.strict) return require_winner(c, q, lv);
           const LineItem* mine = nullptr;
           for (const LineItem& it : lv.items)
             if (it.kind == Kind::Intersection && it.faces == faces) mine = &it;

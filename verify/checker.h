@@ -17,6 +17,10 @@ struct Options {
   std::uint64_t seed = 1;          // deterministic (splitmix64)
   double crease_deg = 30;
   bool smooth = false;             // whether smooth edges are expected to be drawn
+  // Stricter coverage: at every stretch of every edge and intersection line (no
+  // shortcut over plainly hidden ones), the map must have a segment exactly where
+  // the first visible line, recomputed from the spec's rule, is drawn.
+  bool strict = false;
 };
 
 struct Report {

@@ -1,4 +1,4 @@
-// vismap verify SCENE MAP.json [--samples N] [--seed S] [--crease DEG] [--smooth] [--format F]
+// vismap verify SCENE MAP.json [--samples N] [--seed S] [--crease DEG] [--smooth] [--strict] [--format F]
 // Checks a map in the spec's JSON format (written by any program) against its
 // scene; exit 0 iff it holds. See kVerifyHelp.
 #include "verify/verify_cli.h"
@@ -36,6 +36,9 @@ options:
   --seed S         seed of those points (default 1)
   --crease DEG     the crease angle the map was made with (default 30)
   --smooth         the map was made with --smooth (smooth edges are drawn)
+  --strict         also check every stretch of every edge and intersection line,
+                   hidden ones included: a segment exactly where the first
+                   visible line (drawn or not) is drawn (slower)
   --format F       SCENE's format: off, obj, stl or ply (default: by extension;
                    for standard input, by content)
   --max-memory SIZE  refuse a scene that would need more (e.g. 8G; default:
@@ -118,6 +121,8 @@ int verify_command(const std::vector<std::string>& args) {
         opt.crease_deg = parse_angle(a, value());
       } else if (a == "--smooth") {
         opt.smooth = true;
+      } else if (a == "--strict") {
+        opt.strict = true;
       } else if (a == "--format") {
         format = value();
         if (format != "off" && format != "obj" && format != "stl" && format != "ply")

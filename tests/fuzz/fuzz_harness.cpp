@@ -46,6 +46,7 @@ const vismap::Vec3 kEyes[] = {{1.5, 1.5, 6}, {5, -4, 4}, {1, 1, 1.5}, {-2, 5, 3}
 const vismap::Vec3 kTargets[] = {{1, 1, 0}, {0, 0, 0}, {1.5, 1.5, 1}, {2, 2, 2}};
 const double kFovs[] = {40, 60, 90, 120};
 const double kCreases[] = {30, 0, 89, 180};
+const double kSeamFold[] = {0, 0, -1, 1};   // the second square's far edge: coplanar (smooth), folded
 
 }  // namespace
 
@@ -70,25 +71,51 @@ TinyCase decode_tiny(const std::uint8_t* data, std::size_t size) {
   const unsigned lines = b.next();
   t.options.crease_deg = kCreases[lines & 3u];
   t.options.smooth = (lines & 4u) != 0;
-  if (t.options.crease_deg != 30) args << " --crease " << num(t.options.crease_deg);
-  if (t.options.smooth) args << " --smooth";
-  t.args = args.str();
+  const bool seam = (lines & 8u) != 0, scaled = (lines & 16u) != 0;
 
-  // Vertex pool: up to 16 vertices, each coordinate from a small set.
+  // A seam: two squares sharing the edge x = 1 (coplanar, folded down or up), and
+  // random vertices often in the plane x = 1, which every view along it sees
+  // edge-on: faces standing on the seam or stacked under it, lines under it.
+  if (seam) {
+    const double z = kSeamFold[(lines >> 5) & 3u];
+    t.scene.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 2, 0}, {0, 2, 0}, {2, 0, z}, {2, 2, z}};
+    t.scene.faces = {{0, 1, 2, 3}, {1, 4, 5, 2}};
+  }
+  // Vertex pool: up to 16 more vertices, each coordinate from a small set.
   const unsigned nv = 3 + b.next() % 14;
   for (unsigned i = 0; i < nv; ++i) {
     const unsigned xy = b.next(), z = b.next();
-    t.scene.vertices.push_back({kCoord[xy & 7u], kCoord[(xy >> 3) & 7u], kDepth[z & 7u] + ((z >> 3) & 1u ? 0.25 : 0)});
+    const double x = seam && (xy & 64u) ? 1 : kCoord[xy & 7u];
+    t.scene.vertices.push_back({x, kCoord[(xy >> 3) & 7u], kDepth[z & 7u] + ((z >> 3) & 1u ? 0.25 : 0)});
   }
-  // Faces: up to 12, 3 to 5 corners each, corners from the pool.
+  const auto pool = static_cast<unsigned>(t.scene.vertices.size());
+  // Faces: up to 12 more, 3 to 5 corners each, corners from the pool.
   const unsigned nf = 1 + b.next() % 12;
   for (unsigned f = 0; f < nf && !b.done(); ++f) {
     const unsigned k = 3 + b.next() % 3;
     std::vector<std::uint32_t> face;
-    for (unsigned c = 0; c < k; ++c) face.push_back(b.next() % nv);
+    for (unsigned c = 0; c < k; ++c) face.push_back(b.next() % pool);
     t.scene.faces.push_back(face);
   }
   if (t.scene.faces.empty()) t.scene.faces.push_back({0, 1, 2});
+
+  // Scale: the whole scene (and the eye) by 2^k, k in -1000..1000: the same
+  // geometry, at the ends of the double range.
+  if (scaled) {
+    const unsigned hi = b.next(), lo = b.next();
+    const double s = std::ldexp(1.0, static_cast<int>(((hi << 8) | lo) % 2001) - 1000);
+    for (vismap::Vec3& v : t.scene.vertices) v = {v.x * s, v.y * s, v.z * s};
+    for (auto* p : {&t.camera.eye, &t.camera.target})
+      if (*p) **p = {(*p)->x * s, (*p)->y * s, (*p)->z * s};
+    if (t.camera.eye) {
+      args.str("");
+      args << "--eye " << vec(*t.camera.eye) << " --target " << vec(*t.camera.target) << " --fov "
+           << num(*t.camera.fov_deg);
+    }
+  }
+  if (t.options.crease_deg != 30) args << " --crease " << num(t.options.crease_deg);
+  if (t.options.smooth) args << " --smooth";
+  t.args = args.str();
   return t;
 }
 
@@ -136,15 +163,20 @@ void check_pipeline(const std::uint8_t* data, std::size_t size, Engines engines)
     } catch (const std::exception& e) {
       die(std::string("the ") + engine + " engine threw: " + e.what() + repro);
     }
+    // The checker twice: as users run it, then strict (every stretch of every
+    // line, the winner among coinciding lines recomputed, no shortcut).
     vismap_check::Options opt;
     opt.samples = 150;
     opt.crease_deg = t.options.crease_deg;
     opt.smooth = t.options.smooth;
-    const vismap_check::Report rep = vismap_check::check_map(t.scene, json, opt);
-    if (!rep.ok) {
-      std::string why = std::string("the checker rejects the ") + engine + " engine's map:\n";
+    for (bool strict : {false, true}) {
+      opt.strict = strict;
+      const vismap_check::Report rep = vismap_check::check_map(t.scene, json, opt);
+      if (rep.ok) continue;
+      std::string why = std::string("the checker") + (strict ? " (--strict)" : "") + " rejects the " + engine +
+                        " engine's map:\n";
       for (const std::string& f : rep.failures) why += "  " + f + "\n";
-      die(why + repro);
+      die(why + repro + (strict ? "(with --strict)\n" : ""));
     }
     maps.emplace_back(engine, json);
   }

@@ -23,7 +23,10 @@ void check_reader(const std::uint8_t* data, std::size_t size, const std::string&
 // A tiny scene and a camera decoded from bytes: at most 12 faces of 3 to 5
 // corners, picked from a pool of at most 16 vertices whose coordinates come
 // from a small set of integers and halves, so that shared edges, coplanar
-// faces, T-junctions, collinear and repeated corners are common.
+// faces, T-junctions, collinear and repeated corners are common. Some scenes
+// start with a seam (two squares sharing the edge x = 1) and put many vertices
+// in the plane x = 1 (faces standing on the seam, lines under it); some are
+// scaled by 2^k, k in -1000..1000.
 struct TinyCase {
   vismap::Scene scene;
   vismap::CameraSpec camera;
