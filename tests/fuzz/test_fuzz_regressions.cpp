@@ -112,7 +112,8 @@ std::vector<std::string> split(const std::string& s) {
   return v;
 }
 
-// vismap on the scene, then vismap verify on its map: both must succeed.
+// vismap on the scene, then vismap verify (and verify --strict) on its map: all
+// must succeed.
 void expect_verified(const fs::path& dir, const SceneCase& c) {
   SCOPED_TRACE(c.file + " " + c.args);
   vismap_test::TempDir tmp("fuzz_case");
@@ -125,6 +126,9 @@ void expect_verified(const fs::path& dir, const SceneCase& c) {
   for (const std::string& w : split(c.verify_args)) check.push_back(w);
   r = vismap_test::run(check, tmp.path());
   EXPECT_EQ(r.status, 0) << r.out << r.err;
+  check.push_back("--strict");   // and every stretch of every line
+  r = vismap_test::run(check, tmp.path());
+  EXPECT_EQ(r.status, 0) << "--strict\n" << r.out << r.err;
 }
 
 TEST(SceneFindings, FixedFindingsStayFixed) {
