@@ -15,9 +15,27 @@ Vec3 cross(Vec3 a, Vec3 b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-double norm(Vec3 a) { return std::sqrt(dot(a, a)); }
 Vec3 scale(Vec3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
 bool finite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+
+// a times the power of two that brings its largest component into [1, 2): exact,
+// so every formula below gives the same doubles on it as on a, except that its
+// squares neither overflow (coordinates near 1e300) nor underflow (near 1e-300).
+Vec3 balanced(Vec3 a) {
+  const double m = std::max({std::abs(a.x), std::abs(a.y), std::abs(a.z)});
+  if (m == 0 || !std::isfinite(m)) return a;
+  const int e = std::ilogb(m);
+  return {std::ldexp(a.x, -e), std::ldexp(a.y, -e), std::ldexp(a.z, -e)};
+}
+
+// |a|, without overflow or underflow in the squares (the same double as
+// sqrt(a.a) wherever that neither overflows nor underflows).
+double norm(Vec3 a) {
+  const double m = std::max({std::abs(a.x), std::abs(a.y), std::abs(a.z)});
+  if (m == 0 || !std::isfinite(m)) return m;
+  const Vec3 b = balanced(a);
+  return std::ldexp(std::sqrt(dot(b, b)), std::ilogb(m));
+}
 
 struct Frame {
   Vec3 r, u, f;  // right, up, forward (unit, in doubles)
@@ -27,7 +45,8 @@ struct Frame {
 // when +z is parallel to d.
 Frame make_frame(Vec3 d, std::optional<Vec3> up_opt) {
   if (!finite(d) || norm(d) == 0) throw std::invalid_argument("view direction must be a non-zero finite vector");
-  Vec3 up = up_opt.value_or(Vec3{0, 0, 1});
+  d = balanced(d);   // (the same frame; no overflow for an eye at 1e300)
+  Vec3 up = balanced(up_opt.value_or(Vec3{0, 0, 1}));
   Vec3 ru = cross(d, up);
   if (norm(ru) == 0) {
     if (up_opt) throw std::invalid_argument("--up is parallel to the view direction");
@@ -99,6 +118,10 @@ View make_view(const CameraSpec& spec, const Scene& scene) {
           {fr.u.x / t, fr.u.y / t, fr.u.z / t, ey},
           {fr.f.x, fr.f.y, fr.f.z, ef - near},
           {fr.f.x, fr.f.y, fr.f.z, ef}}};
+  for (const auto& row : v.m)
+    for (double x : row)
+      if (!std::isfinite(x))
+        throw std::invalid_argument("the perspective view matrix overflows doubles (--eye too far from the origin)");
   return v;
 }
 

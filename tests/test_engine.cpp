@@ -4,6 +4,7 @@
 // only (the map does not depend on c), and runs are reproducible byte for byte.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -139,4 +140,32 @@ TEST(GridIndependence, SameMapForEveryGridConstant) {
   }
 }
 
+// ---- the whole double range ----------------------------------------------------------
+
+// The regions and segments of a map (what depends on the geometry, not the matrix).
+std::string drawing_of(const std::string& json) {
+  const auto from = json.find("\"regions\""), to = json.find("\"stats\"");
+  return json.substr(from, to - from);
+}
+
+// A scene and its eye and target scaled by 2^k: a perspective view projects them
+// to the same screen points (the view matrix's last column scales by 2^k, X, Y,
+// Z and W with it), so the map is the same, down to every byte of its regions
+// and segments, from k = -1000 to 1000. The camera must not overflow or underflow.
+TEST(DoubleRange, PerspectiveMapIsTheSameAtEveryPowerOfTwoScale) {
+  const vismap::Scene base = vismap::read_scene((fs::path(VISMAP_DATA_DIR) / "interpenetrating_boxes.off").string());
+  auto scaled = [](Vec3 v, int k) { return Vec3{std::ldexp(v.x, k), std::ldexp(v.y, k), std::ldexp(v.z, k)}; };
+  auto map_at = [&](int k) {
+    vismap::Scene s = base;
+    for (Vec3& v : s.vertices) v = scaled(v, k);
+    vismap::CameraSpec cam;
+    cam.eye = scaled({-4, -6, 9}, k);
+    cam.target = scaled({3, 3, 1}, k);
+    cam.fov_deg = 50;
+    return drawing_of(map_json(s, vismap::make_view(cam, s), {}));
+  };
+  const std::string reference = map_at(0);
+  ASSERT_NE(reference.find("\"intersection\""), std::string::npos);
+  for (int k : {-1000, -600, -300, 300, 600, 1000}) EXPECT_EQ(map_at(k), reference) << "scale 2^" << k;
+}
 }  // namespace
