@@ -42,7 +42,7 @@ std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph
   auto compare = [](const End& a, const End& b) {
     if (a.x.sup() < b.x.inf()) return CGAL::SMALLER;
     if (b.x.sup() < a.x.inf()) return CGAL::LARGER;
-    if (CGAL::identical(*a.p, *b.p)) return CGAL::EQUAL;
+    if (exact::same_rep(*a.p, *b.p)) return CGAL::EQUAL;
     return CGAL::compare_xy(*a.p, *b.p);
   };
   std::sort(ends.begin(), ends.end(), [&](const End& a, const End& b) { return compare(a, b) == CGAL::SMALLER; });

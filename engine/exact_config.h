@@ -10,13 +10,18 @@
 // CGAL reports each filtered predicate (and each lazy comparison) through its
 // profiling macros: a call, and a "branch" when the interval answer was uncertain
 // and exact arithmetic had to decide. We define those two macros to bump plain
-// counters, so the stats can say how much exact work a scene needed.
+// counters, so the stats can say how much exact work a scene needed. (CGAL's
+// static filters use the same two macros the other way round: there the branch
+// is the static filter's success, and its failure goes on to a filtered
+// predicate that counts the call again. There a success counts as one call and
+// nothing else does.)
 #pragma once
 #define VISMAP_EXACT_CONFIG_H
 #define CGAL_HAS_NO_THREADS
 #include <CGAL/Profile_counter.h>
 
 #include <cstdint>
+#include <string_view>
 
 namespace vismap::exact {
 
@@ -26,9 +31,16 @@ struct FilterCounts {
 };
 inline FilterCounts filter_counts;   // the engine is single-threaded
 
+constexpr bool in_static_filter(std::string_view file) { return file.find("Static_filters") != file.npos; }
+
 }  // namespace vismap::exact
 
 #undef CGAL_BRANCH_PROFILER
 #undef CGAL_BRANCH_PROFILER_BRANCH
-#define CGAL_BRANCH_PROFILER(Y, NAME) ++::vismap::exact::filter_counts.calls;
-#define CGAL_BRANCH_PROFILER_BRANCH(NAME) ++::vismap::exact::filter_counts.exact;
+#define CGAL_BRANCH_PROFILER(Y, NAME) \
+  if constexpr (!::vismap::exact::in_static_filter(__FILE__)) ++::vismap::exact::filter_counts.calls;
+#define CGAL_BRANCH_PROFILER_BRANCH(NAME)                                 \
+  if constexpr (::vismap::exact::in_static_filter(__FILE__))              \
+    ++::vismap::exact::filter_counts.calls;                               \
+  else                                                                    \
+    ++::vismap::exact::filter_counts.exact;

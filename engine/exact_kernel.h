@@ -68,6 +68,15 @@ inline mpq_class exact_x(const P2& p) { return to_mpq(CGAL::exact(p).x()); }
 inline mpq_class exact_y(const P2& p) { return to_mpq(CGAL::exact(p).y()); }
 #endif
 
+// Whether two points share one representation (copies of one lazy point): then
+// they are equal, with no predicate. (CGAL::identical on kernel points compares
+// the objects' addresses, so copies would not count.)
+#ifdef VISMAP_FLOAT_KERNEL
+inline bool same_rep(const P2& a, const P2& b) { return &a == &b; }
+#else
+inline bool same_rep(const P2& a, const P2& b) { return a.identical(b); }
+#endif
+
 // The sign of an expression: on the intervals of its operands if they decide it,
 // else exactly in GMP rationals; counted like CGAL's own filters. For the hot
 // predicates whose lazy form would build a tree of numbers at every call.

@@ -135,6 +135,9 @@ CGAL::Sign depth_above(const P3& p, const Facet& f) {
 bool curve_behind(const Curve& cv, const Facet& b) {
   // (Or all its depths beyond b's over the cell, which b covers: hidden there.)
   if (std::min(approx_of(cv.s.z).inf(), approx_of(cv.t.z).inf()) > b.zhi) return true;
+  // An end point that is a corner of b lies in its plane: known without arithmetic
+  // (the exact zero no filter can settle).
+  if (b.has_vertex(cv.vs) || b.has_vertex(cv.vt)) return false;
   return depth_above(cv.s, b) == CGAL::POSITIVE && depth_above(cv.t, b) == CGAL::POSITIVE;
 }
 
@@ -255,8 +258,9 @@ bool intersection_segment(const Facet& A, const Facet& B, P2& p, P2& q) {
   // Newell's tests 3 and 4: one facet entirely on one side of the other's plane.
   auto one_side = [](const Facet& F, const Facet& G) {
     bool pos = false, neg = false;
-    for (const P3& v : F.v) {
-      const CGAL::Sign s = depth_above(v, G);
+    for (std::size_t k = 0; k < F.v.size(); ++k) {
+      if (G.has_vertex(F.id[k])) continue;   // a shared corner: in G's plane, known without arithmetic
+      const CGAL::Sign s = depth_above(F.v[k], G);
       pos |= s == CGAL::POSITIVE;
       neg |= s == CGAL::NEGATIVE;
     }

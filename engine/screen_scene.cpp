@@ -225,17 +225,19 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     f.planar = w.planar;
     const std::size_t n = w.v.size();
     f.v.reserve(n + 1);
+    f.id.reserve(n + 1);
     for (std::size_t k = 0; k < n; ++k) {
       std::uint32_t a = w.v[k], b = w.v[(k + 1) % n];
-      if (in_front(a)) f.v.push_back(image(a));
+      if (in_front(a)) { f.v.push_back(image(a)); f.id.push_back(a); }
       if (in_front(a) != in_front(b)) {
         f.v.push_back(in_front(a) ? clip_point(a, b) : clip_point(b, a));
+        f.id.push_back(-1);
         // The cut runs from where the polygon leaves the front half-space to where it re-enters.
         if (in_front(a)) clip_edges[fi].push_back(f.v.back());
         else clip_edges[fi].insert(clip_edges[fi].begin(), f.v.back());
       }
     }
-    if (f.v.size() < 3) { f.v.clear(); ++outside; continue; }
+    if (f.v.size() < 3) { f.v.clear(); f.id.clear(); ++outside; continue; }
     // Facing: the sign of the projected area (vertex coordinates are leaves:
     // intervals first, their exact values where those cannot tell).
     const std::size_t nv = f.v.size();

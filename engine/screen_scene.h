@@ -4,6 +4,7 @@
 #pragma once
 #include <CGAL/Bbox_2.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "arrangements/visibility_map.h"
@@ -20,6 +21,9 @@ enum class Facing : std::uint8_t { Front, Back, EdgeOn };
 struct Facet {
   int face = -1;                 // input face index
   std::vector<P3> v;             // convex polygon, screen space, input order
+  std::vector<long> id;          // id[k]: v[k]'s canonical vertex id, or -1 where the near
+                                 // plane cut the polygon (as Curve::vs): connectivity answers
+                                 // some predicates without arithmetic
   Facing facing = Facing::EdgeOn;
   FT a, b, c;                    // depth(x, y) = a x + b y + c   (not edge-on)
   CGAL::Bbox_2 box;              // contains the exact projection
@@ -27,6 +31,8 @@ struct Facet {
   bool occluder = false;         // hides and labels: not edge-on, not culled
   bool planar = true;            // false: a fan piece of a non-planar polygon
   FT depth_at(const P2& p) const { return a * p.x() + b * p.y() + c; }
+  // Whether canonical vertex v (not -1) is a corner: then it lies in the plane.
+  bool has_vertex(long v) const { return v >= 0 && std::find(id.begin(), id.end(), v) != id.end(); }
 };
 
 // A line that may be drawn or bound a region: an edge piece, or (added by the

@@ -207,8 +207,9 @@ WorldFacets make_world_facets(const Scene& scene) {
     if (p.size() < 3 || !find_plane(p, i1, i2)) { ++out.degenerate; continue; }
     const int face = static_cast<int>(f);
     bool planar = true;
-    for (std::size_t k = 0; k < p.size() && planar; ++k)
-      planar = CGAL::orientation(p[0], p[i1], p[i2], p[k]) == CGAL::COPLANAR;
+    // (The three points that span the plane lie in it: no exact zero to compute.)
+    for (std::size_t k = 1; k < p.size() && planar; ++k)
+      planar = k == i1 || k == i2 || CGAL::orientation(p[0], p[i1], p[i2], p[k]) == CGAL::COPLANAR;
     const std::size_t n = p.size();
     if (planar) {
       int axis = dominant_axis(p[0], p[i1], p[i2]);
