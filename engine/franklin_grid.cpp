@@ -252,6 +252,19 @@ void prune_facets(Grid& g, const ScreenScene& ss, Stats& stats) {
 
 namespace {
 
+// Whether canonical vertices u and v are the ends of an edge of both facets.
+bool common_edge(const Facet& A, const Facet& B, long u, long v) {
+  auto edge_of = [&](const Facet& F) {
+    const std::size_t n = F.id.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const long p = F.id[k], q = F.id[(k + 1) % n];
+      if ((p == u && q == v) || (p == v && q == u)) return true;
+    }
+    return false;
+  };
+  return edge_of(A) && edge_of(B);
+}
+
 // Where facets A and B cross in 3D strictly inside both projections, as a screen
 // segment; false when they do not, or only along an edge of either.
 bool intersection_segment(const Facet& A, const Facet& B, P2& p, P2& q) {
@@ -267,11 +280,26 @@ bool intersection_segment(const Facet& A, const Facet& B, P2& p, P2& q) {
     return !(pos && neg);
   };
   if (one_side(A, B) || one_side(B, A)) return false;
+  // Corners the two share (by identity) lie on both planes, so on their crossing
+  // line. Two adjacent in both facets make it their common edge's line: nothing of
+  // it is strictly inside either. One shared corner v: the line is parametrised
+  // from v, and at A's and B's edges through v the parameter is 0 exactly.
+  long shared = -1;
+  for (std::size_t k = 0; k < A.v.size(); ++k)
+    if (B.has_vertex(A.id[k])) {
+      if (shared >= 0 && common_edge(A, B, shared, A.id[k])) return false;
+      shared = A.id[k];
+    }
   FT da = A.a - B.a, db = A.b - B.b, dc = A.c - B.c;
   // The crossing line: da x + db y + dc = 0, as p0 + t d.
-  const bool use_x = CGAL::compare(CGAL::abs(da), CGAL::abs(db)) != CGAL::SMALLER;
   if (CGAL::is_zero(da) && CGAL::is_zero(db)) return false;
-  P2 p0 = use_x ? P2(-dc / da, FT(0)) : P2(FT(0), -dc / db);
+  P2 p0;
+  if (shared >= 0) {
+    p0 = A.v[std::find(A.id.begin(), A.id.end(), shared) - A.id.begin()].xy();
+  } else {
+    const bool use_x = CGAL::compare(CGAL::abs(da), CGAL::abs(db)) != CGAL::SMALLER;
+    p0 = use_x ? P2(-dc / da, FT(0)) : P2(FT(0), -dc / db);
+  }
   V2 d(-db, da);
   bool has_lo = false, has_hi = false;
   FT lo, hi;
@@ -280,15 +308,16 @@ bool intersection_segment(const Facet& A, const Facet& B, P2& p, P2& q) {
     for (std::size_t k = 0; k < n; ++k) {
       P2 e0 = F->v[k].xy(), e1 = F->v[(k + 1) % n].xy();
       V2 e = e1 - e0;
-      FT alpha = e.x() * (p0.y() - e0.y()) - e.y() * (p0.x() - e0.x());
+      const bool through_p0 = shared >= 0 && (F->id[k] == shared || F->id[(k + 1) % n] == shared);
+      FT alpha = through_p0 ? FT(0) : e.x() * (p0.y() - e0.y()) - e.y() * (p0.x() - e0.x());
       FT beta = e.x() * d.y() - e.y() * d.x();
       if (turn(*F) < 0) { alpha = -alpha; beta = -beta; }
       auto sb = CGAL::sign(beta);
       if (sb == CGAL::ZERO) {
-        if (!CGAL::is_positive(alpha)) return false;   // outside, or along the edge
+        if (through_p0 || !CGAL::is_positive(alpha)) return false;   // outside, or along the edge
         continue;
       }
-      FT t = -alpha / beta;
+      FT t = through_p0 ? FT(0) : FT(-alpha / beta);
       if (sb > 0) { if (!has_lo || t > lo) lo = t; has_lo = true; }
       else { if (!has_hi || t < hi) hi = t; has_hi = true; }
     }

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "engine/culling.h"
+#include "engine/lazy_leaves.h"
 #include "engine/edge_pieces.h"
 #include "engine/morton.h"
 
@@ -185,13 +186,15 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   for (std::uint32_t u = 0; u < used.size(); ++u) {
     const Vec3& p = scene.vertices[used[u]];
     if (!view.perspective) {
+      // Each coordinate is a double where it is one exactly, else a lazy leaf:
+      // its interval now, its rational only if ever needed.
+      front[u] = 1;
       double d[3];
-      if (exact_in_doubles(view.m[0], p, d[0]) && exact_in_doubles(view.m[1], p, d[1]) &&
-          exact_in_doubles(view.m[2], p, d[2])) {
-        front[u] = 1;
-        sv[u] = P3{FT(d[0]), FT(d[1]), FT(d[2])};
-        continue;
-      }
+      for (int r = 0; r < 3; ++r)
+        if (!exact_in_doubles(view.m[r], p, d[r])) d[r] = std::nan("");
+      auto coordinate = [&](int r) { return std::isnan(d[r]) ? projected_number(view.m[r], p) : FT(d[r]); };
+      sv[u] = P3{coordinate(0), coordinate(1), coordinate(2)};
+      continue;
     }
     px = p.x; py = p.y; pz = p.z;
     for (int r = 0; r < (view.perspective ? 4 : 3); ++r) hq[r] = mq[r][0] * px + mq[r][1] * py + mq[r][2] * pz + mq[r][3];
@@ -281,8 +284,12 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
       f.c = FT(z0i.inf());
       continue;
     }
-    // depth = a x + b y + c from three vertices that are not collinear on screen,
-    // computed once in GMP (doubles in the float variant).
+    // depth = a x + b y + c from three vertices that are not collinear on screen:
+    // lazy leaves whose intervals come from the vertices' (exact only on demand),
+    // or, where no three vertices' intervals can tell, computed once in GMP.
+    bool lazy = false;
+    for (std::size_t k = 1; k + 1 < nv && !lazy; ++k) lazy = depth_plane(f.v[0], f.v[k], f.v[k + 1], f.a, f.b, f.c);
+    if (lazy) continue;
     const Num x0 = num(f.v[0].x), y0 = num(f.v[0].y), z0 = num(f.v[0].z);
     for (std::size_t k = 1; k + 1 < nv; ++k) {
       const P3 &p1 = f.v[k], &p2 = f.v[k + 1];

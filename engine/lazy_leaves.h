@@ -1,0 +1,116 @@
+// Kernel numbers whose interval is known at once and whose exact rational is
+// computed only if a predicate's filter fails or the value is written: the
+// projected coordinates of input vertices and the depth planes of facets. Most
+// are never needed exactly (an oblique view of a mesh asks for a few in a
+// thousand), so the projection does no rational arithmetic at all.
+// Internal to screen_scene.cpp (CGAL's lazy representations).
+#pragma once
+#include <CGAL/Mpzf.h>
+
+#include <array>
+
+#include "engine/exact_kernel.h"
+#include "engine/scene.h"
+
+namespace vismap::exact {
+VISMAP_KERNEL_BEGIN
+
+#ifndef VISMAP_FLOAT_KERNEL
+using ExactRep = CGAL::Lazy_exact_nt_rep<mpq_class>;
+static_assert(std::is_same_v<FT, CGAL::Lazy_exact_nt<mpq_class>>, "the leaves below build mpq_class values");
+
+// row . (p, 1) exactly, as a binary float of any length (sums and products of
+// doubles: no division, no gcd).
+inline CGAL::Mpzf projected_mpzf(const std::array<double, 4>& row, const Vec3& p) {
+  return CGAL::Mpzf(row[0]) * CGAL::Mpzf(p.x) + CGAL::Mpzf(row[1]) * CGAL::Mpzf(p.y) +
+         CGAL::Mpzf(row[2]) * CGAL::Mpzf(p.z) + CGAL::Mpzf(row[3]);
+}
+
+// A projected coordinate of an input vertex: the interval of its exact value (as
+// tight as it can be: the exact value rounded down and up), the rational on demand.
+class ProjectedRep final : public ExactRep {
+ public:
+  ProjectedRep(const Interval& i, const std::array<double, 4>& row, const Vec3& p) : ExactRep(i), row_(&row), p_(p) {}
+  void update_exact() const override {
+    auto* pet = new Indirect(mpq_class(projected_mpzf(*row_, p_)));
+    this->keep_at(pet);
+    this->set_ptr(pet);
+  }
+
+ private:
+  const std::array<double, 4>* row_;   // the view matrix's row (it outlives the run)
+  Vec3 p_;
+};
+
+// The depth plane z = a x + b y + c through three screen points (not collinear on
+// screen), one coefficient of it; its interval comes from the points' intervals.
+class PlaneRep final : public ExactRep {
+ public:
+  PlaneRep(const Interval& i, const std::array<FT, 9>& pts, int which) : ExactRep(i), pts_(pts), which_(which) {}
+  void update_exact() const override {
+    mpq_class q[9];
+    for (int k = 0; k < 9; ++k) q[k] = to_mpq(pts_[k]);
+    const mpq_class x1 = q[3] - q[0], y1 = q[4] - q[1], z1 = q[5] - q[2];
+    const mpq_class x2 = q[6] - q[0], y2 = q[7] - q[1], z2 = q[8] - q[2];
+    const mpq_class nz = x1 * y2 - y1 * x2;
+    const mpq_class a = (z1 * y2 - y1 * z2) / nz, b = (x1 * z2 - z1 * x2) / nz;
+    auto* pet = new Indirect(which_ == 0 ? a : which_ == 1 ? b : mpq_class(q[2] - a * q[0] - b * q[1]));
+    this->keep_at(pet);
+    this->set_ptr(pet);
+  }
+
+ private:
+  std::array<FT, 9> pts_;   // x, y, z of the three points (kept alive by these handles)
+  int which_;               // 0: a, 1: b, 2: c
+};
+#endif
+
+// row . (p, 1) as a kernel number: a double where it is one exactly (views along
+// an axis), else a lazy leaf of the exact value.
+inline FT projected_number(const std::array<double, 4>& row, const Vec3& p) {
+#ifdef VISMAP_FLOAT_KERNEL
+  return row[0] * p.x + row[1] * p.y + row[2] * p.z + row[3];
+#else
+  const CGAL::Mpzf s = projected_mpzf(row, p);
+  const std::pair<double, double> i = s.to_interval();
+  if (i.first == i.second) return FT(i.first);
+  return FT(new ProjectedRep(Interval(i.first, i.second), row, p));
+#endif
+}
+
+// The depth plane of three screen points u, v, w with the given exact sign of
+// the projected area (non-zero): z = a x + b y + c. Each coefficient is a lazy
+// leaf whose interval comes from the points' intervals; false where those
+// intervals cannot tell the area's sign (the caller then tries other points).
+inline bool depth_plane(const P3& u, const P3& v, const P3& w, FT& a, FT& b, FT& c) {
+#ifdef VISMAP_FLOAT_KERNEL
+  const double x1 = v.x - u.x, y1 = v.y - u.y, z1 = v.z - u.z, x2 = w.x - u.x, y2 = w.y - u.y, z2 = w.z - u.z;
+  const double nz = x1 * y2 - y1 * x2;
+  if (nz == 0) return false;
+  a = (z1 * y2 - y1 * z2) / nz;
+  b = (x1 * z2 - z1 * x2) / nz;
+  c = u.z - a * u.x - b * u.y;
+  return true;
+#else
+  Interval ia, ib, ic;
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const Interval x0 = approx_of(u.x), y0 = approx_of(u.y), z0 = approx_of(u.z);
+    const Interval x1 = approx_of(v.x) - x0, y1 = approx_of(v.y) - y0, z1 = approx_of(v.z) - z0;
+    const Interval x2 = approx_of(w.x) - x0, y2 = approx_of(w.y) - y0, z2 = approx_of(w.z) - z0;
+    const Interval nz = x1 * y2 - y1 * x2;
+    if (nz.inf() <= 0 && nz.sup() >= 0) return false;
+    ia = (z1 * y2 - y1 * z2) / nz;
+    ib = (x1 * z2 - z1 * x2) / nz;
+    ic = z0 - ia * x0 - ib * y0;
+  }
+  const std::array<FT, 9> pts{u.x, u.y, u.z, v.x, v.y, v.z, w.x, w.y, w.z};
+  a = FT(new PlaneRep(ia, pts, 0));
+  b = FT(new PlaneRep(ib, pts, 1));
+  c = FT(new PlaneRep(ic, pts, 2));
+  return true;
+#endif
+}
+
+VISMAP_KERNEL_END
+}  // namespace vismap::exact
