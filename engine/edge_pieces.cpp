@@ -13,7 +13,7 @@ namespace {
 
 struct Edge {
   int facet;
-  std::uint8_t edge;
+  std::uint32_t edge;   // a convex planar polygon is one facet of up to 10^6 corners
   std::uint8_t axis;    // the first axis along which the edge moves
   bool forward;         // p -> q runs that axis upwards
   std::uint32_t p, q;   // vertex ids, facet order
@@ -121,7 +121,7 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
       const std::uint32_t p = v[i], q = v[(i + 1) % v.size()];
       const Vec3 &a = scene.vertices[p], &b = scene.vertices[q];
       const std::uint8_t axis = a.x != b.x ? 0 : a.y != b.y ? 1 : 2;   // (p != q)
-      edges.push_back(Edge{f, static_cast<std::uint8_t>(i), axis, coord(a, axis) < coord(b, axis), p, q});
+      edges.push_back(Edge{f, static_cast<std::uint32_t>(i), axis, coord(a, axis) < coord(b, axis), p, q});
     }
   }
   auto vertex = [&](std::uint32_t id) -> const Vec3& { return scene.vertices[id]; };

@@ -11,7 +11,7 @@ namespace vismap::engine {
 
 struct Sharer {
   int facet;
-  std::uint8_t edge;   // facet edge index (v[edge] -> v[edge+1])
+  std::uint32_t edge;  // facet edge index (v[edge] -> v[edge+1]); facets may have 10^6 corners
   bool forward;        // the facet's edge runs from a to b
 };
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <type_traits>
 
+#include "engine/convex_inside.h"
 #include "engine/union_find.h"
 
 namespace vismap::engine {
@@ -94,16 +95,14 @@ int turn(const Facet& f) { return f.facing == Facing::Front ? 1 : -1; }
 
 // Corner p strictly inside the projection of the convex facet f.
 bool strictly_inside(const Facet& f, const P2& p) {
-  const std::size_t n = f.v.size();
-  for (std::size_t k = 0; k < n; ++k)
-    if (CGAL::orientation(f.v[k].xy(), f.v[(k + 1) % n].xy(), p) * turn(f) <= 0) return false;
-  return true;
+  return strictly_inside_convex(f.v.size(), turn(f), [&](std::size_t i, std::size_t j) {
+    return static_cast<int>(CGAL::orientation(f.v[i].xy(), f.v[j].xy(), p));
+  });
 }
 bool strictly_inside(const Facet& f, const Corner& p) {
-  const std::size_t n = f.v.size();
-  for (std::size_t k = 0; k < n; ++k)
-    if (orientation(f.v[k], f.v[(k + 1) % n], p) * turn(f) <= 0) return false;
-  return true;
+  return strictly_inside_convex(f.v.size(), turn(f), [&](std::size_t i, std::size_t j) {
+    return static_cast<int>(orientation(f.v[i], f.v[j], p));
+  });
 }
 
 bool same_plane(const Facet& f, const Facet& b) { return f.a == b.a && f.b == b.b && f.c == b.c; }
