@@ -23,6 +23,22 @@ inline VisibilityMap start_map(const Scene& scene, const View& view) {
   return map;
 }
 
+// x / 2^k, exactly (the engines' screen scale, ScreenScene::scale_exp, undone).
+inline void unscale(mpq_class& x, int k) {
+  if (k > 0) mpq_div_2exp(x.get_mpq_t(), x.get_mpq_t(), k);
+  if (k < 0) mpq_mul_2exp(x.get_mpq_t(), x.get_mpq_t(), -k);
+}
+
+// The finished map's vertices back in the spec's screen coordinates. (Scaling
+// by a power of two keeps their lexicographic order: the map stays canonical.)
+inline void unscale_map(VisibilityMap& map, int k) {
+  if (k == 0) return;
+  for (Point2& p : map.vertices) {
+    unscale(p.x, k);
+    unscale(p.y, k);
+  }
+}
+
 // Seconds since the previous lap (or construction).
 struct PhaseClock {
   std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();

@@ -73,6 +73,7 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   }
   assemble_map(mp, map);
 #endif
+  unscale_map(map, ss.scale_exp);
   st.time("arrangement", clock.lap());
   st.count("visible_segments", static_cast<std::int64_t>(map.segments.size()));
   st.count("regions", static_cast<std::int64_t>(map.regions.size()));

@@ -8,6 +8,7 @@
 #include <CGAL/Mpzf.h>
 
 #include <array>
+#include <cmath>
 
 #include "engine/exact_kernel.h"
 #include "engine/scene.h"
@@ -19,20 +20,24 @@ VISMAP_KERNEL_BEGIN
 using ExactRep = CGAL::Lazy_exact_nt_rep<mpq_class>;
 static_assert(std::is_same_v<FT, CGAL::Lazy_exact_nt<mpq_class>>, "the leaves below build mpq_class values");
 
-// row . (p, 1) exactly, as a binary float of any length (sums and products of
-// doubles: no division, no gcd).
-inline CGAL::Mpzf projected_mpzf(const std::array<double, 4>& row, const Vec3& p) {
-  return CGAL::Mpzf(row[0]) * CGAL::Mpzf(p.x) + CGAL::Mpzf(row[1]) * CGAL::Mpzf(p.y) +
-         CGAL::Mpzf(row[2]) * CGAL::Mpzf(p.z) + CGAL::Mpzf(row[3]);
+// (row . (p, 1)) * 2^k exactly, as a binary float of any length (sums and
+// products of doubles: no division, no gcd).
+inline CGAL::Mpzf projected_mpzf(const std::array<double, 4>& row, const Vec3& p, int k) {
+  CGAL::Mpzf s = CGAL::Mpzf(row[0]) * CGAL::Mpzf(p.x) + CGAL::Mpzf(row[1]) * CGAL::Mpzf(p.y) +
+                 CGAL::Mpzf(row[2]) * CGAL::Mpzf(p.z) + CGAL::Mpzf(row[3]);
+  // 2^k as two doubles (|k| may exceed a double's exponent range).
+  if (k != 0) s = s * CGAL::Mpzf(std::ldexp(1.0, k / 2)) * CGAL::Mpzf(std::ldexp(1.0, k - k / 2));
+  return s;
 }
 
 // A projected coordinate of an input vertex: the interval of its exact value (as
 // tight as it can be: the exact value rounded down and up), the rational on demand.
 class ProjectedRep final : public ExactRep {
  public:
-  ProjectedRep(const Interval& i, const std::array<double, 4>& row, const Vec3& p) : ExactRep(i), row_(&row), p_(p) {}
+  ProjectedRep(const Interval& i, const std::array<double, 4>& row, const Vec3& p, int k)
+      : ExactRep(i), row_(&row), p_(p), k_(k) {}
   void update_exact() const override {
-    auto* pet = new Indirect(mpq_class(projected_mpzf(*row_, p_)));
+    auto* pet = new Indirect(mpq_class(projected_mpzf(*row_, p_, k_)));
     this->keep_at(pet);
     this->set_ptr(pet);
   }
@@ -40,6 +45,7 @@ class ProjectedRep final : public ExactRep {
  private:
   const std::array<double, 4>* row_;   // the view matrix's row (it outlives the run)
   Vec3 p_;
+  int k_;                              // the screen scale: times 2^k
 };
 
 // The depth plane z = a x + b y + c through three screen points (not collinear on
@@ -65,16 +71,16 @@ class PlaneRep final : public ExactRep {
 };
 #endif
 
-// row . (p, 1) as a kernel number: a double where it is one exactly (views along
-// an axis), else a lazy leaf of the exact value.
-inline FT projected_number(const std::array<double, 4>& row, const Vec3& p) {
+// (row . (p, 1)) * 2^k as a kernel number: a double where it is one exactly
+// (views along an axis), else a lazy leaf of the exact value.
+inline FT projected_number(const std::array<double, 4>& row, const Vec3& p, int k) {
 #ifdef VISMAP_FLOAT_KERNEL
-  return row[0] * p.x + row[1] * p.y + row[2] * p.z + row[3];
+  return std::ldexp(row[0] * p.x + row[1] * p.y + row[2] * p.z + row[3], k);
 #else
-  const CGAL::Mpzf s = projected_mpzf(row, p);
+  const CGAL::Mpzf s = projected_mpzf(row, p, k);
   const std::pair<double, double> i = s.to_interval();
   if (i.first == i.second) return FT(i.first);
-  return FT(new ProjectedRep(Interval(i.first, i.second), row, p));
+  return FT(new ProjectedRep(Interval(i.first, i.second), row, p, k));
 #endif
 }
 

@@ -46,6 +46,7 @@ VisibilityMap visibility_newell(const Scene& scene, const View& view, const Engi
 
   // The planar arrangement of the kept pieces, its regions labelled.
   build_map(pieces, map);
+  unscale_map(map, ss.scale_exp);
   st.time("arrangement", clock.lap());
   st.count("visible_segments", static_cast<std::int64_t>(map.segments.size()));
   st.count("regions", static_cast<std::int64_t>(map.regions.size()));
@@ -58,7 +59,11 @@ VisibilityMap visibility_newell(const Scene& scene, const View& view, const Engi
     for (const Fragment& f : order) {
       PaintedFragment pf;
       pf.face = f.face;
-      for (const exact::P3& p : f.v) pf.polygon.push_back(Point2{exact::to_mpq(p.x), exact::to_mpq(p.y)});
+      for (const exact::P3& p : f.v) {
+        pf.polygon.push_back(Point2{exact::to_mpq(p.x), exact::to_mpq(p.y)});
+        unscale(pf.polygon.back().x, ss.scale_exp);
+        unscale(pf.polygon.back().y, ss.scale_exp);
+      }
       painter->push_back(std::move(pf));
     }
   }

@@ -34,11 +34,6 @@ using Num = mpq_class;
 mpq_class num(const FT& x) { return to_mpq(x); }
 #endif
 
-// Screen coordinates become exact leaves (GMP values, tight intervals) rather than
-// arithmetic trees: ties such as faces parallel to the screen then settle in the
-// interval filter instead of forcing exact re-evaluation at every comparison.
-FT leaf(const FT& x) { return from_mpq(to_mpq(x)); }
-
 // A projected coordinate as a kernel number. In a view along an axis (CAD's
 // front, top and side views) it is often a double exactly: then a double
 // constant, whose interval is the point itself and costs nothing to find.
@@ -69,6 +64,56 @@ bool exact_in_doubles(const std::array<double, 4>& m, const Vec3& p, double& out
   }
   out = acc;
   return true;
+}
+
+// The screen scale: the power of two 2^k that every screen coordinate (x, y and
+// depth) is multiplied by inside the engines, chosen from a bound on their size
+// (doubles, used for nothing else) so that they lie within 2^-64..2^64 of 1
+// when the scene does not. Interval filters then never overflow, even on
+// products of several coordinates (at 1e300 they would: an infinite bound can
+// turn into a NaN that a min or max then drops, and CGAL's lazy line
+// intersection reads an overflow as "no intersection"); nor do they underflow
+// to useless zeros at 1e-300. Scaling by 2^k is exact and changes no decision;
+// the map's vertices are scaled back once, when it is complete (unscale_map).
+int screen_scale(const Scene& scene, const std::vector<std::uint32_t>& used, const View& view) {
+  double far = 0;   // the largest |coordinate| of a used vertex (or, in perspective, of the eye)
+  for (auto id : used) {
+    const Vec3& p = scene.vertices[id];
+    far = std::max({far, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  }
+  if (far == 0) return 0;
+  auto row_log2 = [&](int r) {   // log2 of an upper bound on |row r, without its offset|
+    const double a = std::max({std::abs(view.m[r][0]), std::abs(view.m[r][1]), std::abs(view.m[r][2])});
+    return a == 0 ? -2000 : std::ilogb(a) + 3;
+  };
+  int e = -2000;   // |every screen coordinate| <= 2^e
+  if (!view.perspective) {
+    for (int r = 0; r < 3; ++r) e = std::max(e, row_log2(r) + std::ilogb(far) + 1);
+  } else {
+    // |X/W| <= |row 0| |p - eye| / near, as W >= near wherever anything is kept
+    // (the near plane is Z = 0, Z = W - near); likewise Y. Depth is in [0, 1).
+    far = std::max({far, std::abs(view.eye.x), std::abs(view.eye.y), std::abs(view.eye.z)});
+    const double near = view.m[3][3] - view.m[2][3];
+    if (!(near > 0)) return 0;
+    e = std::max(row_log2(0), row_log2(1)) + std::ilogb(far) + 2 - std::ilogb(near);
+  }
+  if (e > 64) return -e;
+  if (e < -64 && !view.perspective) return -e;
+  return 0;
+}
+
+// x * 2^k, exactly: a double when it still is one exactly.
+FT scaled(double x, int k) {
+  const double y = std::ldexp(x, k);
+  if (x == 0 || (std::isfinite(y) && std::abs(y) >= 0x1p-1022)) return FT(y);
+  mpq_class q(x);
+  if (k > 0) mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), k);
+  else mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), -k);
+  return from_mpq(q);
+}
+void scale(mpq_class& q, int k) {
+  if (k > 0) mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), k);
+  if (k < 0) mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), -k);
 }
 
 CGAL::Bbox_2 box_of(const P3& p) {
@@ -173,6 +218,8 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   for (const auto& f : wf.facets)
     for (auto id : f.v)
       if (local[id] == ~0u) { local[id] = static_cast<std::uint32_t>(used.size()); used.push_back(id); }
+  ScreenScene ss;
+  const int k = ss.scale_exp = screen_scale(scene, used, view);
   std::vector<FT> hz;   // homogeneous Z, for clipping at the near plane (perspective)
   if (view.perspective) hz.resize(used.size());
   std::vector<P3> sv(used.size());
@@ -192,7 +239,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
       double d[3];
       for (int r = 0; r < 3; ++r)
         if (!exact_in_doubles(view.m[r], p, d[r])) d[r] = std::nan("");
-      auto coordinate = [&](int r) { return std::isnan(d[r]) ? projected_number(view.m[r], p) : FT(d[r]); };
+      auto coordinate = [&](int r) { return std::isnan(d[r]) ? projected_number(view.m[r], p, k) : scaled(d[r], k); };
       sv[u] = P3{coordinate(0), coordinate(1), coordinate(2)};
       continue;
     }
@@ -203,6 +250,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     front[u] = !view.perspective || (sgn(hq[2]) > 0 && sgn(hq[3]) > 0);
     if (!front[u]) continue;
     if (view.perspective) for (int r = 0; r < 3; ++r) hq[r] /= hq[3];
+    for (int r = 0; r < 3; ++r) scale(hq[r], k);
     sv[u] = P3{screen_number(hq[0]), screen_number(hq[1]), screen_number(hq[2])};
   }
   auto in_front = [&](std::uint32_t id) { return front[local[id]] != 0; };
@@ -214,10 +262,12 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   auto clip_point = [&](std::uint32_t a, std::uint32_t b) {
     WorldPoint w = cut_at_near(world(a), world(b), hz[local[a]], hz[local[b]]);
     Homogeneous h = transform(view, w.x, w.y, w.z);
-    return P3{leaf(h.X / h.W), leaf(h.Y / h.W), FT(0)};   // on the near plane: depth 0 exactly
+    mpq_class x = to_mpq(h.X / h.W), y = to_mpq(h.Y / h.W);
+    scale(x, k);
+    scale(y, k);
+    return P3{from_mpq(x), from_mpq(y), FT(0)};   // on the near plane: depth 0 exactly
   };
 
-  ScreenScene ss;
   ss.facets.resize(wf.facets.size());
   std::vector<std::vector<P3>> clip_edges(wf.facets.size());  // near-plane cuts
   std::int64_t outside = 0, edge_on = 0;

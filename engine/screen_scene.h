@@ -53,6 +53,7 @@ struct Curve {
 struct ScreenScene {
   std::vector<Facet> facets;
   std::vector<Curve> curves;
+  int scale_exp = 0;             // screen coordinates are the spec's times 2^scale_exp
 };
 
 ScreenScene make_screen_scene(const Scene& scene, const View& view, const EngineOptions& opt,
