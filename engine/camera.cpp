@@ -114,9 +114,14 @@ View make_view(const CameraSpec& spec, const Scene& scene) {
   double ex = -dot(fr.r, eye) / t, ey = -dot(fr.u, eye) / t, ef = -dot(fr.f, eye);
   v.perspective = true;
   v.eye = eye;
+  // Far from the origin (an eye at 1e15) ef - near can round back to ef: the
+  // near plane would pass through the eye and every depth Z/W would be 1. The
+  // next double below ef then gives the nearest near plane the doubles allow.
+  double ez = ef - near;
+  if (!(ez < ef)) ez = std::nextafter(ef, -HUGE_VAL);
   v.m = {{{fr.r.x / t, fr.r.y / t, fr.r.z / t, ex},
           {fr.u.x / t, fr.u.y / t, fr.u.z / t, ey},
-          {fr.f.x, fr.f.y, fr.f.z, ef - near},
+          {fr.f.x, fr.f.y, fr.f.z, ez},
           {fr.f.x, fr.f.y, fr.f.z, ef}}};
   for (const auto& row : v.m)
     for (double x : row)
