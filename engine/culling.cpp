@@ -1,7 +1,9 @@
 #include "engine/culling.h"
 
-#include <gmpxx.h>
+#include <CGAL/Interval_nt.h>
+#include <CGAL/Mpzf.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -10,11 +12,15 @@
 namespace vismap::engine {
 namespace {
 
-// Six times the signed volume of the tetrahedron (o, a, b, c), exactly.
-mpq_class det(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& c) {
-  mpq_class ax = mpq_class(a.x) - o.x, ay = mpq_class(a.y) - o.y, az = mpq_class(a.z) - o.z;
-  mpq_class bx = mpq_class(b.x) - o.x, by = mpq_class(b.y) - o.y, bz = mpq_class(b.z) - o.z;
-  mpq_class cx = mpq_class(c.x) - o.x, cy = mpq_class(c.y) - o.y, cz = mpq_class(c.z) - o.z;
+// Six times the signed volume of the tetrahedron (o, a, b, c), in any number
+// type: Interval_nt (under upward rounding: an interval around it) or
+// CGAL::Mpzf (exactly: differences and products of doubles are binary floats,
+// so no gcd is ever taken).
+template <class N>
+N det(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const N ax = N(a.x) - N(o.x), ay = N(a.y) - N(o.y), az = N(a.z) - N(o.z);
+  const N bx = N(b.x) - N(o.x), by = N(b.y) - N(o.y), bz = N(b.z) - N(o.z);
+  const N cx = N(c.x) - N(o.x), cy = N(c.y) - N(o.y), cz = N(c.z) - N(o.z);
   return ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx);
 }
 
@@ -67,19 +73,49 @@ std::vector<std::int8_t> closed_component_sides(
       if (inside_box) closed[c] = 0;
     }
 
-  // Orientation of each closed component: the sign of its exact signed volume.
-  std::vector<mpq_class> volume(n);
-  for (int f = 0; f < n; ++f) {
-    int c = uf.find(f);
-    if (!closed[c]) continue;
-    const auto& v = wf.facets[f].v;
-    for (std::size_t k = 1; k + 1 < v.size(); ++k)
-      volume[c] += det(origin[c], scene.vertices[v[0]], scene.vertices[v[k]], scene.vertices[v[k + 1]]);
+  // Orientation of each closed component: the sign of its signed volume, a sum
+  // of tetrahedra from one of its corners. Intervals settle it unless the
+  // volume is (nearly) zero; then it is summed exactly.
+  using Interval = CGAL::Interval_nt<false>;
+  std::vector<Interval> volume(n, Interval(0));
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    for (int f = 0; f < n; ++f) {
+      const int c = uf.find(f);
+      if (!closed[c]) continue;
+      const auto& v = wf.facets[f].v;
+      for (std::size_t k = 1; k + 1 < v.size(); ++k)
+        volume[c] += det<Interval>(origin[c], scene.vertices[v[0]], scene.vertices[v[k]], scene.vertices[v[k + 1]]);
+    }
+  }
+  std::vector<std::int8_t> sign(n, 0);
+  std::vector<CGAL::Mpzf> exact;
+  for (int c = 0; c < n; ++c) {
+    if (!closed[c] || uf.find(c) != c) continue;
+    // Beyond 2^300 a product of three differences may overflow, and an interval
+    // with an infinite bound is not to be trusted (inf * 0 is NaN, which a max
+    // can drop): such a component is summed exactly.
+    const double far = std::max({-lo[c].x, -lo[c].y, -lo[c].z, hi[c].x, hi[c].y, hi[c].z});
+    if (!(far <= 0x1p300)) volume[c] = Interval(-1, 1);
+    if (volume[c].inf() > 0) sign[c] = 1;
+    else if (volume[c].sup() < 0) sign[c] = -1;
+    else if (exact.empty()) exact.resize(n);   // (then summed below)
+  }
+  if (!exact.empty()) {
+    for (int f = 0; f < n; ++f) {
+      const int c = uf.find(f);
+      if (!closed[c] || sign[c] != 0) continue;
+      const auto& v = wf.facets[f].v;
+      for (std::size_t k = 1; k + 1 < v.size(); ++k)
+        exact[c] = exact[c] + det<CGAL::Mpzf>(origin[c], scene.vertices[v[0]], scene.vertices[v[k]], scene.vertices[v[k + 1]]);
+    }
+    for (int c = 0; c < n; ++c)
+      if (closed[c] && uf.find(c) == c && sign[c] == 0) sign[c] = static_cast<std::int8_t>(exact[c].sign());
   }
   std::vector<std::int8_t> side(n, 0);
   for (int f = 0; f < n; ++f) {
     int c = uf.find(f);
-    if (closed[c]) side[f] = static_cast<std::int8_t>(sgn(volume[c]));
+    if (closed[c]) side[f] = sign[c];
   }
   return side;
 }
