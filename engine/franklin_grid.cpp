@@ -290,13 +290,19 @@ bool intersection_segment(const Facet& A, const Facet& B, P2& p, P2& q) {
       shared = A.id[k];
     }
   FT da = A.a - B.a, db = A.b - B.b, dc = A.c - B.c;
-  // The crossing line: da x + db y + dc = 0, as p0 + t d.
-  if (CGAL::is_zero(da) && CGAL::is_zero(db)) return false;
+  // The crossing line: da x + db y + dc = 0, as p0 + t d. (da, db) != (0, 0):
+  // each facet has corners strictly on both sides of the other's plane, so the
+  // planes are neither equal nor parallel.
   P2 p0;
   if (shared >= 0) {
     p0 = A.v[std::find(A.id.begin(), A.id.end(), shared) - A.id.begin()].xy();
   } else {
-    const bool use_x = CGAL::compare(CGAL::abs(da), CGAL::abs(db)) != CGAL::SMALLER;
+    // Any non-zero coefficient gives a point of the line; one whose interval
+    // excludes zero is known to be non-zero without its exact value.
+    const Interval ia = approx_of(da), ib = approx_of(db);
+    const bool use_x = ia.inf() > 0 || ia.sup() < 0 ? true
+                       : ib.inf() > 0 || ib.sup() < 0 ? false
+                                                      : !CGAL::is_zero(da);
     p0 = use_x ? P2(-dc / da, FT(0)) : P2(FT(0), -dc / db);
   }
   V2 d(-db, da);

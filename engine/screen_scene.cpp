@@ -1,5 +1,7 @@
 #include "engine/screen_scene.h"
 
+#include <CGAL/Mpzf.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -130,13 +132,72 @@ WorldPoint cut_at_near(const WorldPoint& p, const WorldPoint& q, const FT& zp, c
   return {p.x + t * (q.x - p.x), p.y + t * (q.y - p.y), p.z + t * (q.z - p.z)};
 }
 
-// Exact crease test n1.n2 < c |n1||n2| without square roots.
-bool is_crease(const std::array<FT, 3>& n1, const std::array<FT, 3>& n2, double cos_angle) {
-  FT d = n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2];
-  FT c(cos_angle);
-  FT l = (n1[0] * n1[0] + n1[1] * n1[1] + n1[2] * n1[2]) * (n2[0] * n2[0] + n2[1] * n2[1] + n2[2] * n2[2]);
-  if (!CGAL::is_negative(c)) return CGAL::is_negative(d) || d * d < c * c * l;
-  return CGAL::is_negative(d) && d * d > c * c * l;
+// A world facet's corners o, p, q that span its plane: the first corner and the
+// first two consecutive ones after it that are not collinear with it.
+struct Spanning {
+  Vec3 o, p, q;
+};
+
+// The normal (p - o) x (q - o) in number type N: intervals (under upward
+// rounding) or CGAL::Mpzf (exact: products of differences of doubles, no gcd).
+template <class N>
+std::array<N, 3> normal_of(const Vec3& o, const Vec3& p, const Vec3& q) {
+  const N ax = N(p.x) - N(o.x), ay = N(p.y) - N(o.y), az = N(p.z) - N(o.z);
+  const N bx = N(q.x) - N(o.x), by = N(q.y) - N(o.y), bz = N(q.z) - N(o.z);
+  return {ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx};
+}
+
+// Whether every coordinate is small enough for interval products of degree 8
+// (the crease test) never to overflow: an interval with an infinite bound is
+// not trusted (inf * 0 is NaN, which a max can drop).
+bool interval_safe(const std::initializer_list<const Vec3*> pts) {
+  for (const Vec3* v : pts)
+    if (!(std::abs(v->x) <= 0x1p100 && std::abs(v->y) <= 0x1p100 && std::abs(v->z) <= 0x1p100)) return false;
+  return true;
+}
+
+Spanning spanning_corners(const Scene& scene, const WorldFacet& w) {
+  const auto& v = w.v;
+  const Vec3& o = scene.vertices[v[0]];
+  for (std::size_t k = 1; k + 1 < v.size(); ++k) {
+    const Vec3 &p = scene.vertices[v[k]], &q = scene.vertices[v[k + 1]];
+    if (interval_safe({&o, &p, &q})) {
+      CGAL::Protect_FPU_rounding<true> upward;
+      const auto n = normal_of<Interval>(o, p, q);
+      if (std::any_of(n.begin(), n.end(), [](const Interval& x) { return x.inf() > 0 || x.sup() < 0; }))
+        return {o, p, q};
+    }
+    const auto n = normal_of<CGAL::Mpzf>(o, p, q);
+    if (n[0].sign() != 0 || n[1].sign() != 0 || n[2].sign() != 0) return {o, p, q};
+  }
+  return {o, o, o};   // (a planar facet always has a spanning triple)
+}
+
+// The crease test n1.n2 < c |n1||n2|, exactly, without square roots: with
+// d = n1.n2 and l = |n1|^2 |n2|^2, for c >= 0: d < 0 or d^2 < c^2 l; for c < 0:
+// d < 0 and d^2 > c^2 l. Signs from intervals first, exactly where they cannot tell.
+template <class N>
+std::pair<N, N> crease_terms(const Spanning& f, const Spanning& g, double c) {
+  const auto n1 = normal_of<N>(f.o, f.p, f.q), n2 = normal_of<N>(g.o, g.p, g.q);
+  const N d = n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2];
+  const N l = (n1[0] * n1[0] + n1[1] * n1[1] + n1[2] * n1[2]) * (n2[0] * n2[0] + n2[1] * n2[1] + n2[2] * n2[2]);
+  return {d, d * d - N(c) * N(c) * l};
+}
+bool is_crease(const Spanning& f, const Spanning& g, double c) {
+  int sd = 2, se = 2;   // signs of d and of d^2 - c^2 l (2: not known)
+  if (interval_safe({&f.o, &f.p, &f.q, &g.o, &g.p, &g.q})) {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const auto [d, e] = crease_terms<Interval>(f, g, c);
+    sd = d.inf() > 0 ? 1 : d.sup() < 0 ? -1 : 2;
+    se = e.inf() > 0 ? 1 : e.sup() < 0 ? -1 : 2;
+  }
+  if (sd == 2 || se == 2) {
+    const auto [d, e] = crease_terms<CGAL::Mpzf>(f, g, c);
+    sd = d.sign();
+    se = e.sign();
+  }
+  if (c >= 0) return sd < 0 || se < 0;
+  return sd < 0 && se > 0;
 }
 
 // World facets in the Morton order of their approximate screen centres (doubles:
@@ -371,18 +432,12 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   }
   stats.count("culled_back_faces", back);
 
-  // World normals, for the crease angle.
-  auto normal = [&](int fi) {
-    const auto& v = wf.facets[fi].v;
-    const Vec3& o = scene.vertices[v[0]];
-    for (std::size_t k = 1; k + 1 < v.size(); ++k) {
-      const Vec3 &p = scene.vertices[v[k]], &q = scene.vertices[v[k + 1]];
-      FT ax = FT(p.x) - o.x, ay = FT(p.y) - o.y, az = FT(p.z) - o.z;
-      FT bx = FT(q.x) - o.x, by = FT(q.y) - o.y, bz = FT(q.z) - o.z;
-      std::array<FT, 3> nn{ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx};
-      if (!CGAL::is_zero(nn[0]) || !CGAL::is_zero(nn[1]) || !CGAL::is_zero(nn[2])) return nn;
-    }
-    return std::array<FT, 3>{FT(0), FT(0), FT(0)};
+  // Each facet's spanning corners in the world, for the crease angle (found when first needed).
+  std::vector<Spanning> spanning(wf.facets.size());
+  std::vector<char> has_spanning(wf.facets.size(), 0);
+  auto spanning_of = [&](int fi) -> const Spanning& {
+    if (!has_spanning[fi]) { spanning[fi] = spanning_corners(scene, wf.facets[fi]); has_spanning[fi] = 1; }
+    return spanning[fi];
   };
 
   const double cos_crease = std::cos(opt.crease_deg * M_PI / 180);
@@ -418,7 +473,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
       Facing ga = facing(fa), gb = facing(fb);
       if ((ga == Facing::Front) != (gb == Facing::Front)) c.kind = EdgeKind::Silhouette;
       else if (ga == gb && ga != Facing::EdgeOn)
-        c.kind = is_crease(normal(fa), normal(fb), cos_crease) ? EdgeKind::Crease : EdgeKind::Smooth;
+        c.kind = is_crease(spanning_of(fa), spanning_of(fb), cos_crease) ? EdgeKind::Crease : EdgeKind::Smooth;
       else c.kind = EdgeKind::Smooth;
     }
     c.drawn = !c.faces.empty() && (c.kind != EdgeKind::Smooth || opt.smooth);
