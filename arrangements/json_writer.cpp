@@ -59,6 +59,17 @@ std::string to_json(const VisibilityMap& map) {
   // Each vertex's text once: most appear in several rings and segments.
   std::vector<std::string> text(map.vertices.size());
   for (std::size_t v = 0; v < map.vertices.size(); ++v) point(text[v], map.vertices[v]);
+  // The whole text's size, nearly: one allocation instead of a doubling string
+  // copied over and over (a map's JSON runs to tens of MB).
+  std::size_t size = out.size() + 4096;
+  for (const Region& g : map.regions) {
+    size += 40;
+    for (auto v : g.outer) size += text[v].size() + 1;
+    for (const Ring& h : g.holes)
+      for (auto v : h) size += text[v].size() + 1;
+  }
+  for (const Segment& sg : map.segments) size += text[sg.from].size() + text[sg.to].size() + 60 + 12 * sg.faces.size();
+  out.reserve(size);
   out += "],\n\"regions\":[";
   for (std::size_t i = 0; i < map.regions.size(); ++i) {
     const Region& g = map.regions[i];

@@ -36,6 +36,7 @@ EdgeAttr edge_attr(const std::vector<MapPiece>& pieces, const int* on_edge, std:
   const MapPiece& any = pieces[on_edge[0]];
   at.left = any.left;
   at.right = any.right;
+  at.line = any.s;
   int winner = -1;
   P2 mid;
   bool have_mid = false;
@@ -101,9 +102,12 @@ void write_canonical(const MapGraph& g, VisibilityMap& map) {
   for (int w = 0; w < nverts; ++w)
     if (degree[w] == 2) {
       const int e1 = two[2 * w], e2 = two[2 * w + 1];
+      // (Pieces of one curve are collinear by construction: the exact zero that
+      // no filter settles is then never asked.)
       essential[w] = !(g.attrs[e1].same_as(g.attrs[e2]) &&
-                       CGAL::orientation(g.points[other_end(e1, w)], g.points[w], g.points[other_end(e2, w)]) ==
-                           CGAL::COLLINEAR);
+                       ((g.attrs[e1].line != nullptr && g.attrs[e1].line == g.attrs[e2].line) ||
+                        CGAL::orientation(g.points[other_end(e1, w)], g.points[w], g.points[other_end(e2, w)]) ==
+                            CGAL::COLLINEAR));
     }
   // A vertex's exact coordinates.
   auto point = [&](int w) {

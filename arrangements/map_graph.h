@@ -21,6 +21,8 @@ struct EdgeAttr {
   EdgeKind kind = EdgeKind::Border;
   const std::vector<int>* faces = nullptr;
   int left = -1, right = -1;
+  const void* line = nullptr;   // the curve of a piece on it (its first end point): two
+                                // edges with one curve are collinear, known without arithmetic
   bool same_as(const EdgeAttr& o) const {
     if (drawn != o.drawn || left != o.left || right != o.right) return false;
     return !drawn || (kind == o.kind && *faces == *o.faces);
