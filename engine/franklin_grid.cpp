@@ -338,33 +338,42 @@ bool intersection_segment(const Facet& A, const Facet& B, P2& p, P2& q) {
 // Faces that pierce each other: an intersection line for every pair of facets of
 // different faces that share a cell and cross inside both projections.
 void add_intersection_lines(Grid& g, ScreenScene& ss, Stats& stats) {
-  // Candidate pairs from every cell, each once (sorted, not hashed: no node per pair).
-  std::vector<std::uint64_t> pairs;
-  std::vector<int> here;
-  for (Cell& cell : g.cells) {
-    here = cell.facets;
-    if (cell.blocker >= 0) here.push_back(cell.blocker);
-    for (std::size_t i = 0; i < here.size(); ++i)
-      for (std::size_t j = i + 1; j < here.size(); ++j) {
-        int fa = std::min(here[i], here[j]), fb = std::max(here[i], here[j]);
-        const Facet &A = ss.facets[fa], &B = ss.facets[fb];
-        if (A.face == B.face || !CGAL::do_overlap(A.box, B.box)) continue;
-        // Depth ranges apart: no point of one is at the other's depth.
-        if (A.zhi < B.zlo || B.zhi < A.zlo) continue;
-        pairs.push_back((static_cast<std::uint64_t>(fa) << 32) | static_cast<std::uint32_t>(fb));
-      }
-  }
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  // Each facet's partners: facets of other faces listed with it in some cell, each
+  // once (stamped with the facet they were found for), tested in index order:
+  // no list of all pairs to sort and deduplicate.
+  const int nf = static_cast<int>(ss.facets.size());
+  std::vector<int> stamp(ss.facets.size(), -1), partners;
   std::int64_t tested = 0, found = 0;
-  for (const std::uint64_t pair : pairs) {
-    const int fa = static_cast<int>(pair >> 32), fb = static_cast<int>(pair & 0xffffffffu);
-    const Facet &A = ss.facets[fa], &B = ss.facets[fb];
-    ++tested;
-    P2 p, q;
-    if (!intersection_segment(A, B, p, q)) continue;
-    ++found;
-    ss.curves.push_back(intersection_curve(P3(p, A.depth_at(p)), P3(q, A.depth_at(q)), fa, fb, A.face, B.face));
+  for (int fa = 0; fa < nf; ++fa) {
+    const Facet& A = ss.facets[fa];
+    if (!A.occluder) continue;
+    partners.clear();
+    auto consider = [&](int fb) {
+      if (fb <= fa || stamp[fb] == fa) return;
+      stamp[fb] = fa;
+      const Facet& B = ss.facets[fb];
+      if (A.face == B.face || !CGAL::do_overlap(A.box, B.box)) return;
+      // Depth ranges apart: no point of one is at the other's depth.
+      if (A.zhi < B.zlo || B.zhi < A.zlo) return;
+      partners.push_back(fb);
+    };
+    const CellRange r = range_of(g, A.box);
+    for (int iy = r.y0; iy <= r.y1; ++iy)
+      for (int ix = r.x0; ix <= r.x1; ++ix) {
+        const Cell& cell = g.at(ix, iy);
+        if (cell.blocker != fa && std::find(cell.facets.begin(), cell.facets.end(), fa) == cell.facets.end()) continue;
+        for (int fb : cell.facets) consider(fb);
+        if (cell.blocker >= 0) consider(cell.blocker);
+      }
+    std::sort(partners.begin(), partners.end());
+    for (const int fb : partners) {
+      const Facet& B = ss.facets[fb];
+      ++tested;
+      P2 p, q;
+      if (!intersection_segment(A, B, p, q)) continue;
+      ++found;
+      ss.curves.push_back(intersection_curve(P3(p, A.depth_at(p)), P3(q, A.depth_at(q)), fa, fb, A.face, B.face));
+    }
   }
   stats.count("facet_pairs_tested", tested);
   stats.count("intersection_lines", found);

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cmath>
+#include <memory>
 
 #include "engine/exact_kernel.h"
 #include "engine/scene.h"
@@ -49,25 +50,43 @@ class ProjectedRep final : public ExactRep {
 };
 
 // The depth plane z = a x + b y + c through three screen points (not collinear on
-// screen), one coefficient of it; its interval comes from the points' intervals.
+// screen): what its three coefficients share. The points are kept once, and
+// the exact plane is computed once, for whichever coefficient is asked first.
+struct PlanePoints {
+  std::array<FT, 9> pts;                            // x, y, z of the three points
+  std::unique_ptr<std::array<mpq_class, 3>> exact;  // a, b, c, once computed
+  const mpq_class& coefficient(int which) {
+    if (!exact) {
+      exact = std::make_unique<std::array<mpq_class, 3>>();
+      mpq_class q[9];
+      for (int k = 0; k < 9; ++k) q[k] = to_mpq(pts[k]);
+      const mpq_class x1 = q[3] - q[0], y1 = q[4] - q[1], z1 = q[5] - q[2];
+      const mpq_class x2 = q[6] - q[0], y2 = q[7] - q[1], z2 = q[8] - q[2];
+      const mpq_class nz = x1 * y2 - y1 * x2;
+      auto& e = *exact;
+      e[0] = (z1 * y2 - y1 * z2) / nz;
+      e[1] = (x1 * z2 - z1 * x2) / nz;
+      e[2] = q[2] - e[0] * q[0] - e[1] * q[1];
+    }
+    return (*exact)[which];
+  }
+};
+
+// One coefficient of such a plane: its interval from the points' intervals.
 class PlaneRep final : public ExactRep {
  public:
-  PlaneRep(const Interval& i, const std::array<FT, 9>& pts, int which) : ExactRep(i), pts_(pts), which_(which) {}
+  PlaneRep(const Interval& i, std::shared_ptr<PlanePoints> plane, int which)
+      : ExactRep(i), plane_(std::move(plane)), which_(which) {}
   void update_exact() const override {
-    mpq_class q[9];
-    for (int k = 0; k < 9; ++k) q[k] = to_mpq(pts_[k]);
-    const mpq_class x1 = q[3] - q[0], y1 = q[4] - q[1], z1 = q[5] - q[2];
-    const mpq_class x2 = q[6] - q[0], y2 = q[7] - q[1], z2 = q[8] - q[2];
-    const mpq_class nz = x1 * y2 - y1 * x2;
-    const mpq_class a = (z1 * y2 - y1 * z2) / nz, b = (x1 * z2 - z1 * x2) / nz;
-    auto* pet = new Indirect(which_ == 0 ? a : which_ == 1 ? b : mpq_class(q[2] - a * q[0] - b * q[1]));
+    auto* pet = new Indirect(plane_->coefficient(which_));
     this->keep_at(pet);
     this->set_ptr(pet);
+    plane_.reset();   // (the exact value is kept: the points are no longer needed here)
   }
 
  private:
-  std::array<FT, 9> pts_;   // x, y, z of the three points (kept alive by these handles)
-  int which_;               // 0: a, 1: b, 2: c
+  mutable std::shared_ptr<PlanePoints> plane_;
+  int which_;   // 0: a, 1: b, 2: c
 };
 #endif
 
@@ -110,10 +129,11 @@ inline bool depth_plane(const P3& u, const P3& v, const P3& w, FT& a, FT& b, FT&
     ib = (x1 * z2 - z1 * x2) / nz;
     ic = z0 - ia * x0 - ib * y0;
   }
-  const std::array<FT, 9> pts{u.x, u.y, u.z, v.x, v.y, v.z, w.x, w.y, w.z};
-  a = FT(new PlaneRep(ia, pts, 0));
-  b = FT(new PlaneRep(ib, pts, 1));
-  c = FT(new PlaneRep(ic, pts, 2));
+  auto plane = std::make_shared<PlanePoints>();
+  plane->pts = {u.x, u.y, u.z, v.x, v.y, v.z, w.x, w.y, w.z};
+  a = FT(new PlaneRep(ia, plane, 0));
+  b = FT(new PlaneRep(ib, plane, 1));
+  c = FT(new PlaneRep(ic, std::move(plane), 2));
   return true;
 #endif
 }
