@@ -32,9 +32,20 @@
 //
 //   bench_occt [--N 1000,3000,10000] [--D 5] [--reps 3] [--engines vismap,poly,exact]
 //              [--dir X,Y,Z] [--deflection 0.01] [--csv]
+//   bench_occt --mesh SCENE.off [--reps 3] [--engines poly] [--dir X,Y,Z] [--csv]
 //
 // Without --csv: a Markdown table of medians. With --csv: one CSV row per run
 // (bench/run_all collects them).
+//
+// --mesh: a real mesh instead of the random squares (bench/run_all, section f).
+// The mesh is read with vismap's reader (engine/scene.h) and built as OCCT faces
+// that share their edges: one TopoDS_Vertex per mesh vertex, one TopoDS_Edge per
+// mesh edge, each face a planar face on the wire of its (shared) edges, all in
+// one compound ("build", not in the totals). Edges are not marked as smooth
+// (no BRepLib::EncodeRegularity), so every mesh edge counts as a sharp edge, as
+// with vismap's --crease 0 (except that OCCT also draws the edges between two
+// coplanar faces, which vismap merges). The N and D columns of the CSV hold the
+// face count and 0; a "scene" column names the file.
 #include <time.h>
 
 #include <algorithm>
@@ -44,13 +55,17 @@
 #include <cstdlib>
 #include <functional>
 #include <map>
+#include <unordered_map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepGProp.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <GProp_GProps.hxx>
@@ -65,6 +80,8 @@
 #include <TopoDS_Builder.hxx>
 #include <TopoDS_Compound.hxx>
 #include <TopoDS_Shape.hxx>
+#include <TopoDS_Vertex.hxx>
+#include <TopoDS_Edge.hxx>
 #include <gp_Ax2.hxx>
 #include <gp_Dir.hxx>
 #include <gp_Pnt.hxx>
@@ -72,6 +89,7 @@
 #include "bench/cpu_time.h"
 #include "bench/scene_gen.h"
 #include "engine/camera.h"
+#include "engine/scene.h"
 #include "engine/visibility.h"
 
 namespace {
@@ -135,6 +153,52 @@ TopoDS_Compound make_shape(const Scene& scene) {
   return compound;
 }
 
+// A mesh as OCCT faces sharing vertices and edges (--mesh): HLR then sees each
+// mesh edge once, with its two faces. Degenerate faces (repeated or collinear
+// corners) that OCCT refuses are skipped and counted.
+std::size_t g_mesh_skipped = 0;
+TopoDS_Compound make_mesh_shape(const Scene& scene) {
+  TopoDS_Builder builder;
+  TopoDS_Compound compound;
+  builder.MakeCompound(compound);
+  std::vector<TopoDS_Vertex> verts(scene.vertices.size());
+  auto vertex = [&](std::uint32_t i) -> const TopoDS_Vertex& {
+    if (verts[i].IsNull()) {
+      const Vec3& p = scene.vertices[i];
+      verts[i] = BRepBuilderAPI_MakeVertex(gp_Pnt(p.x, p.y, p.z));
+    }
+    return verts[i];
+  };
+  std::unordered_map<std::uint64_t, TopoDS_Edge> edges;
+  g_mesh_skipped = 0;
+  for (const auto& face : scene.faces) {
+    try {
+      BRepBuilderAPI_MakeWire wire;
+      bool ok = face.size() >= 3;
+      for (std::size_t k = 0; ok && k < face.size(); ++k) {
+        std::uint32_t a = face[k], b = face[(k + 1) % face.size()];
+        if (a == b) { ok = false; break; }
+        const std::uint64_t key = (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+        auto it = edges.find(key);
+        if (it == edges.end()) {
+          BRepBuilderAPI_MakeEdge me(vertex(std::min(a, b)), vertex(std::max(a, b)));
+          if (!me.IsDone()) { ok = false; break; }
+          it = edges.emplace(key, me.Edge()).first;
+        }
+        wire.Add(it->second);
+        if (!wire.IsDone()) ok = false;
+      }
+      if (!ok) { ++g_mesh_skipped; continue; }
+      BRepBuilderAPI_MakeFace mf(wire.Wire(), /*OnlyPlane=*/Standard_True);
+      if (!mf.IsDone()) { ++g_mesh_skipped; continue; }
+      builder.Add(compound, mf.Face());
+    } catch (const Standard_Failure&) {
+      ++g_mesh_skipped;
+    }
+  }
+  return compound;
+}
+
 Vec3 unit(Vec3 a) {
   const double n = std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
   return {a.x / n, a.y / n, a.z / n};
@@ -180,10 +244,10 @@ void measure_lines(Result& r, const TopoDS_Shape& sharp, const TopoDS_Shape& out
   r.edges = count_edges(sharp) + count_edges(outline) + count_edges(smooth);
 }
 
-Result run_poly(const Scene& scene, const View& view, double deflection) {
+Result run_poly(const Scene& scene, const View& view, double deflection, bool mesh = false) {
   Result r;
   Timer tb;
-  const TopoDS_Compound shape = make_shape(scene);
+  const TopoDS_Compound shape = mesh ? make_mesh_shape(scene) : make_shape(scene);
   r.build = tb.cpu();
   Timer t;
   BRepMesh_IncrementalMesh mesher(shape, deflection, /*isRelative=*/Standard_False, /*angle=*/0.5,
@@ -204,10 +268,10 @@ Result run_poly(const Scene& scene, const View& view, double deflection) {
   return r;
 }
 
-Result run_exact(const Scene& scene, const View& view) {
+Result run_exact(const Scene& scene, const View& view, bool mesh = false) {
   Result r;
   Timer tb;
-  const TopoDS_Compound shape = make_shape(scene);
+  const TopoDS_Compound shape = mesh ? make_mesh_shape(scene) : make_shape(scene);
   r.build = tb.cpu();
   Timer t;
   Handle(HLRBRep_Algo) algo = new HLRBRep_Algo();
@@ -243,7 +307,8 @@ double median(std::vector<double> v) {
 int usage() {
   std::fprintf(stderr,
                "usage: bench_occt [--N 1000,3000,10000] [--D 5] [--reps 3] [--engines vismap,poly,exact]\n"
-               "                  [--dir X,Y,Z] [--deflection 0.01] [--csv]\n");
+               "                  [--dir X,Y,Z] [--deflection 0.01] [--csv]\n"
+               "       bench_occt --mesh SCENE.off [--reps 3] [--engines poly] [--dir X,Y,Z] [--csv]\n");
   return 2;
 }
 
@@ -256,6 +321,8 @@ int main(int argc, char** argv) {
   int reps = 3;
   bool csv = false;
   Vec3 dir{0, 0, -1};
+  std::string mesh_path;
+  bool engines_given = false;
   try {
     for (int k = 1; k < argc; ++k) {
       const std::string a = argv[k];
@@ -266,7 +333,10 @@ int main(int argc, char** argv) {
       if (a == "--N") sizes = parse_list<long>(value(), [](const std::string& s) { return std::stol(s); });
       else if (a == "--D") depth = std::stod(value());
       else if (a == "--reps") reps = std::stoi(value());
-      else if (a == "--engines") engines = parse_list<std::string>(value(), [](const std::string& s) { return s; });
+      else if (a == "--engines") {
+        engines = parse_list<std::string>(value(), [](const std::string& s) { return s; });
+        engines_given = true;
+      } else if (a == "--mesh") mesh_path = value();
       else if (a == "--deflection") deflection = std::stod(value());
       else if (a == "--csv") csv = true;
       else if (a == "--dir") {
@@ -275,11 +345,51 @@ int main(int argc, char** argv) {
         dir = Vec3{d[0], d[1], d[2]};
       } else return usage();
     }
+    if (!mesh_path.empty() && !engines_given) engines = {"poly"};
     for (const auto& e : engines)
       if (e != "vismap" && e != "poly" && e != "exact") throw std::invalid_argument("unknown engine " + e);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_occt: %s\n", e.what());
     return usage();
+  }
+
+  if (!mesh_path.empty()) {
+    try {
+      const Scene scene = read_scene(mesh_path);
+      CameraSpec camera;
+      camera.dir = dir;
+      const View view = make_view(camera, scene);
+      const std::string name = mesh_path.substr(mesh_path.find_last_of('/') + 1);
+      if (csv)
+        std::printf("scene,faces,engine,rep,cpu_s,wall_s,build_s,mesh_s,visible_length,length_sharp,length_outline,"
+                    "length_smooth,edges,skipped_faces\n");
+      else
+        std::printf("| scene | faces | engine | CPU s | wall s | build s | visible length | edges |\n"
+                    "|---|---:|---|---:|---:|---:|---:|---:|\n");
+      std::fflush(stdout);
+      for (const std::string& e : engines) {
+        for (int rep = 0; rep < reps; ++rep) {
+          Result r = e == "vismap" ? run_vismap(scene, view)
+                     : e == "poly" ? run_poly(scene, view, deflection, true)
+                                   : run_exact(scene, view, true);
+          if (csv)
+            std::printf("%s,%zu,%s,%d,%.6f,%.6f,%.6f,%.6f,%.12g,%.12g,%.12g,%.12g,%zu,%zu\n", name.c_str(),
+                        scene.faces.size(), e.c_str(), rep, r.cpu, r.wall, r.build, r.mesh, r.length, r.len_sharp,
+                        r.len_outline, r.len_smooth, r.edges, e == "vismap" ? std::size_t(0) : g_mesh_skipped);
+          else
+            std::printf("| %s | %zu | %s | %.3f | %.3f | %.3f | %.9g | %zu |\n", name.c_str(), scene.faces.size(),
+                        e.c_str(), r.cpu, r.wall, r.build, r.length, r.edges);
+          std::fflush(stdout);
+        }
+      }
+    } catch (const Standard_Failure& f) {
+      std::fprintf(stderr, "bench_occt: OpenCASCADE failed: %s\n", f.GetMessageString());
+      return 1;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "bench_occt: %s\n", e.what());
+      return 1;
+    }
+    return 0;
   }
 
   if (csv) {
