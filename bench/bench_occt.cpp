@@ -312,6 +312,21 @@ int usage() {
   return 2;
 }
 
+// Runs body, turning OpenCASCADE's and the standard library's exceptions into a
+// message and exit status 1.
+int guarded(const std::function<void()>& body) {
+  try {
+    body();
+  } catch (const Standard_Failure& f) {
+    std::fprintf(stderr, "bench_occt: OpenCASCADE failed: %s\n", f.GetMessageString());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_occt: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -354,7 +369,7 @@ int main(int argc, char** argv) {
   }
 
   if (!mesh_path.empty()) {
-    try {
+    return guarded([&] {
       const Scene scene = read_scene(mesh_path);
       CameraSpec camera;
       camera.dir = dir;
@@ -382,14 +397,7 @@ int main(int argc, char** argv) {
           std::fflush(stdout);
         }
       }
-    } catch (const Standard_Failure& f) {
-      std::fprintf(stderr, "bench_occt: OpenCASCADE failed: %s\n", f.GetMessageString());
-      return 1;
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "bench_occt: %s\n", e.what());
-      return 1;
-    }
-    return 0;
+    });
   }
 
   if (csv) {
@@ -400,7 +408,7 @@ int main(int argc, char** argv) {
     std::printf("|---:|---|---:|---:|---:|---:|\n");
   }
   std::fflush(stdout);
-  try {
+  return guarded([&] {
     for (long n : sizes) {
       const Scene scene = gen::random_squares_depth(static_cast<std::size_t>(n), depth, 1980);
       CameraSpec camera;
@@ -430,12 +438,5 @@ int main(int argc, char** argv) {
         }
       }
     }
-  } catch (const Standard_Failure& f) {
-    std::fprintf(stderr, "bench_occt: OpenCASCADE failed: %s\n", f.GetMessageString());
-    return 1;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "bench_occt: %s\n", e.what());
-    return 1;
-  }
-  return 0;
+  });
 }
