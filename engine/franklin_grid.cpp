@@ -61,6 +61,8 @@ std::array<Corner, 4> corners(const Grid& g, int ix, int iy) {
           Corner{g.X[ix], g.Y[iy + 1]}};
 }
 
+bool same_plane(const Facet& f, const Facet& b) { return f.a == b.a && f.b == b.b && f.c == b.c; }
+
 // sign(depth of f - depth of b) at corner p.
 CGAL::Sign depth_order(const Facet& f, const Facet& b, const Corner& p) {
   return filtered_sign(
@@ -69,6 +71,9 @@ CGAL::Sign depth_order(const Facet& f, const Facet& b, const Corner& p) {
                (approx_of(f.c) - approx_of(b.c));
       },
       [&]() -> mpq_class {
+        // Mostly facets in one plane (a flat part of a mesh): their exact planes,
+        // computed once per facet, are compared instead of evaluated at p.
+        if (same_plane(f, b)) return 0;
         return (to_mpq(f.a) - to_mpq(b.a)) * p.x + (to_mpq(f.b) - to_mpq(b.b)) * p.y + (to_mpq(f.c) - to_mpq(b.c));
       });
 }
@@ -105,8 +110,6 @@ bool strictly_inside(const Facet& f, const Corner& p) {
   });
 }
 
-bool same_plane(const Facet& f, const Facet& b) { return f.a == b.a && f.b == b.b && f.c == b.c; }
-
 // f is hidden by b everywhere in the closed cell (b covers it): strictly deeper at
 // the 4 corners (depths are affine, so everywhere, and in a neighbourhood), or in
 // b's very plane with a higher face index.
@@ -114,10 +117,15 @@ bool behind_throughout(const Facet& f, const Facet& b, const std::array<Corner, 
   // Depth ranges apart: b's depths over the cell (which it covers) are its
   // vertices' convex combinations, as f's are over its own points.
   if (f.zlo > b.zhi) return true;
-  bool deeper = true;
-  for (const Corner& p : c)
-    if (depth_order(f, b, p) != CGAL::POSITIVE) { deeper = false; break; }
-  return deeper || (b.face < f.face && same_plane(f, b));
+  for (const Corner& p : c) {
+    const CGAL::Sign s = depth_order(f, b, p);
+    if (s == CGAL::POSITIVE) continue;
+    // Nearer at a corner: neither deeper nor in b's plane (no exact plane compared).
+    if (s == CGAL::NEGATIVE) return false;
+    // As deep at a corner: hidden only if in b's very plane, behind it by index.
+    return b.face < f.face && same_plane(f, b);
+  }
+  return true;
 }
 
 // sign(depth of p - depth of f's plane under p).
@@ -607,11 +615,26 @@ void share_overlap_cuts(const ScreenScene& ss, std::vector<std::pair<int, int>>&
       points.push_back(C.s.xy());
       points.push_back(C.t.xy());
     }
+    // The points in order along the common line (by x, or by y on a vertical line),
+    // each once; each curve takes those strictly between its ends: O(P log P) for
+    // P points, where asking every point of every curve was O(P^2) (the edges of
+    // walls seen edge-on, all on one screen line: minutes on a CAD part).
+    const Curve& C0 = ss.curves[members[k].second];
+    const bool use_x = CGAL::compare_x(C0.s.xy(), C0.t.xy()) != CGAL::EQUAL;
+    auto less = [&](const P2& a, const P2& b) {
+      return (use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b)) == CGAL::SMALLER;
+    };
+    std::sort(points.begin(), points.end(), less);
+    points.erase(std::unique(points.begin(), points.end(), [&](const P2& a, const P2& b) { return !less(a, b); }),
+                 points.end());
     for (std::size_t m = k; m < l; ++m) {
       const int ci = members[m].second;
       const Curve& C = ss.curves[ci];
-      for (const P2& p : points)
-        if (CGAL::collinear_are_strictly_ordered_along_line(C.s.xy(), p, C.t.xy())) cuts[ci].push_back(p);
+      const bool forward = less(C.s.xy(), C.t.xy());
+      const P2 &lo = forward ? C.s.xy() : C.t.xy(), &hi = forward ? C.t.xy() : C.s.xy();
+      const auto first = std::upper_bound(points.begin(), points.end(), lo, less);
+      const auto last = std::lower_bound(first, points.end(), hi, less);
+      cuts[ci].insert(cuts[ci].end(), first, last);
     }
     k = l;
   }
