@@ -444,9 +444,43 @@ namespace {
 
 // The screen point where two curves on one line have equal depth, strictly
 // inside their common part; false if their depth order does not change there.
+// sign(depth of C at p - depth of D at p) for collinear curves C and D and a
+// point p of their common line, parametrised along x (along y if the line is
+// vertical): depth_C(p) = N_C / d_C with d_C = t.x - s.x and
+// N_C = s.z d_C + (p.x - s.x)(t.z - s.z); the sign of N_C d_D - N_D d_C times
+// those of d_C and d_D. A filtered predicate: no lazy number is built.
+CGAL::Sign depth_gap(const Curve& C, const Curve& D, const P2& p, bool along_x) {
+  auto u = [&](const P3& q) -> const FT& { return along_x ? q.x : q.y; };
+  const CGAL::Sign dc = CGAL::compare(u(C.t), u(C.s)), dd = CGAL::compare(u(D.t), u(D.s));
+  const CGAL::Sign cross = filtered_sign(
+      [&] {
+        const Interval pu = along_x ? approx_x(p) : approx_y(p);
+        auto n = [&](const Curve& K, Interval& d) {
+          d = approx_of(u(K.t)) - approx_of(u(K.s));
+          return approx_of(K.s.z) * d + (pu - approx_of(u(K.s))) * (approx_of(K.t.z) - approx_of(K.s.z));
+        };
+        Interval d_c, d_d;
+        const Interval n_c = n(C, d_c), n_d = n(D, d_d);
+        return n_c * d_d - n_d * d_c;
+      },
+      [&]() -> mpq_class {
+        const mpq_class pu = along_x ? exact_x(p) : exact_y(p);
+        auto n = [&](const Curve& K, mpq_class& d) -> mpq_class {
+          d = to_mpq(u(K.t)) - to_mpq(u(K.s));
+          return to_mpq(K.s.z) * d + (pu - to_mpq(u(K.s))) * (to_mpq(K.t.z) - to_mpq(K.s.z));
+        };
+        mpq_class d_c, d_d;
+        const mpq_class n_c = n(C, d_c), n_d = n(D, d_d);
+        return n_c * d_d - n_d * d_c;
+      });
+  return cross * dc * dd;
+}
+
 bool depth_crossing(const Curve& C, const Curve& D, const P2& lo, const P2& hi, P2& x) {
+  // The signs first, on filtered predicates; the point (lazy) only for a crossing.
+  const bool along_x = CGAL::compare_x(C.s.xy(), C.t.xy()) != CGAL::EQUAL;
+  if (depth_gap(C, D, lo, along_x) * depth_gap(C, D, hi, along_x) >= 0) return false;
   FT flo = depth_on(C, lo) - depth_on(D, lo), fhi = depth_on(C, hi) - depth_on(D, hi);
-  if (CGAL::sign(flo) * CGAL::sign(fhi) >= 0) return false;
   FT mu = flo / (flo - fhi);
   x = lo + mu * (hi - lo);
   return true;
