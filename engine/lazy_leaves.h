@@ -49,6 +49,26 @@ class ProjectedRep final : public ExactRep {
   int k_;                              // the screen scale: times 2^k
 };
 
+// A perspective screen coordinate of an input vertex, (N / W) * 2^k with N and W
+// rows of the view matrix applied to it: the interval of the quotient of the
+// two exact binary floats' intervals now, the rational only on demand.
+class PerspectiveRep final : public ExactRep {
+ public:
+  PerspectiveRep(const Interval& i, const std::array<double, 4>& n, const std::array<double, 4>& w, const Vec3& p,
+                 int k)
+      : ExactRep(i), n_(&n), w_(&w), p_(p), k_(k) {}
+  void update_exact() const override {
+    auto* pet = new Indirect(mpq_class(projected_mpzf(*n_, p_, k_)) / mpq_class(projected_mpzf(*w_, p_, 0)));
+    this->keep_at(pet);
+    this->set_ptr(pet);
+  }
+
+ private:
+  const std::array<double, 4>*n_, *w_;   // the view matrix's rows (they outlive the run)
+  Vec3 p_;
+  int k_;
+};
+
 // The depth plane z = a x + b y + c through three screen points (not collinear on
 // screen): what its three coefficients share. The points are kept once, and
 // the exact plane is computed once, for whichever coefficient is asked first.
@@ -100,6 +120,33 @@ inline FT projected_number(const std::array<double, 4>& row, const Vec3& p, int 
   const std::pair<double, double> i = s.to_interval();
   if (i.first == i.second) return FT(i.first);
   return FT(new ProjectedRep(Interval(i.first, i.second), row, p, k));
+#endif
+}
+
+// (n . (p, 1)) / (w . (p, 1)) * 2^k as a kernel number, w . (p, 1) > 0: a lazy
+// leaf (a double where its interval is one).
+inline FT perspective_number(const std::array<double, 4>& n, const std::array<double, 4>& w, const Vec3& p, int k) {
+#ifdef VISMAP_FLOAT_KERNEL
+  return std::ldexp((n[0] * p.x + n[1] * p.y + n[2] * p.z + n[3]) / (w[0] * p.x + w[1] * p.y + w[2] * p.z + w[3]), k);
+#else
+  const std::pair<double, double> in = projected_mpzf(n, p, k).to_interval(), iw = projected_mpzf(w, p, 0).to_interval();
+  Interval q;
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    q = Interval(in.first, in.second) / Interval(iw.first, iw.second);
+  }
+  if (q.is_point()) return FT(q.inf());
+  return FT(new PerspectiveRep(q, n, w, p, k));
+#endif
+}
+
+// The sign of row . (p, 1), exactly.
+inline int projected_sign(const std::array<double, 4>& row, const Vec3& p) {
+#ifdef VISMAP_FLOAT_KERNEL
+  const double v = row[0] * p.x + row[1] * p.y + row[2] * p.z + row[3];
+  return (v > 0) - (v < 0);
+#else
+  return projected_mpzf(row, p, 0).sign();
 #endif
 }
 

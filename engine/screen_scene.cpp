@@ -285,12 +285,8 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   if (view.perspective) hz.resize(used.size());
   std::vector<P3> sv(used.size());
   std::vector<char> front(used.size(), 0);
-  // Input vertices: the exact image computed directly in GMP (a few products of
-  // doubles), kept as leaves.
-  std::array<std::array<mpq_class, 4>, 4> mq;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) mq[r][c] = view.m[r][c];
-  mpq_class px, py, pz, hq[4];
+  // Input vertices: exact values that no rational arithmetic is done for unless
+  // a predicate needs them (engine/lazy_leaves.h).
   for (std::uint32_t u = 0; u < used.size(); ++u) {
     const Vec3& p = scene.vertices[used[u]];
     if (!view.perspective) {
@@ -304,15 +300,13 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
       sv[u] = P3{coordinate(0), coordinate(1), coordinate(2)};
       continue;
     }
-    px = p.x; py = p.y; pz = p.z;
-    for (int r = 0; r < (view.perspective ? 4 : 3); ++r) hq[r] = mq[r][0] * px + mq[r][1] * py + mq[r][2] * pz + mq[r][3];
-    if (!view.perspective) hq[3] = 1;
-    if (view.perspective) hz[u] = screen_number(hq[2]);
-    front[u] = !view.perspective || (sgn(hq[2]) > 0 && sgn(hq[3]) > 0);
+    // Perspective: X/W, Y/W, Z/W as lazy leaves (the quotient's interval now),
+    // kept where Z > 0 and W > 0 (decided exactly on binary floats).
+    hz[u] = projected_number(view.m[2], p, 0);   // (for clipping at the near plane)
+    front[u] = projected_sign(view.m[2], p) > 0 && projected_sign(view.m[3], p) > 0;
     if (!front[u]) continue;
-    if (view.perspective) for (int r = 0; r < 3; ++r) hq[r] /= hq[3];
-    for (int r = 0; r < 3; ++r) scale(hq[r], k);
-    sv[u] = P3{screen_number(hq[0]), screen_number(hq[1]), screen_number(hq[2])};
+    sv[u] = P3{perspective_number(view.m[0], view.m[3], p, k), perspective_number(view.m[1], view.m[3], p, k),
+               perspective_number(view.m[2], view.m[3], p, k)};
   }
   auto in_front = [&](std::uint32_t id) { return front[local[id]] != 0; };
   auto image = [&](std::uint32_t id) -> const P3& { return sv[local[id]]; };
