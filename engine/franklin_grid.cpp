@@ -1,5 +1,7 @@
 #include "engine/franklin_grid.h"
 
+#include <CGAL/Mpzf.h>
+
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
@@ -128,24 +130,59 @@ bool behind_throughout(const Facet& f, const Facet& b, const std::array<Corner, 
   return true;
 }
 
-// sign(depth of p - depth of f's plane under p).
-CGAL::Sign depth_above(const P3& p, const Facet& f) {
+// Whether input vertex v lies in the plane of facet f, decided in world space
+// (the projection keeps planes and incidences) on binary floats, with no gcd:
+// det(q - o, r - o, v - o) for corners o, q, r of f that span its plane. False
+// when f has no three such corners in the input (cut at the near plane).
+bool in_world_plane(const std::vector<Vec3>& world, long v, const Facet& f) {
+  using M = CGAL::Mpzf;
+  std::array<M, 3> o, q, r, n;
+  auto load = [&](std::array<M, 3>& x, long id) {
+    const Vec3& w = world[static_cast<std::size_t>(id)];
+    x = {M(w.x), M(w.y), M(w.z)};
+  };
+  const std::size_t m = f.id.size();
+  std::size_t k0 = 0;
+  while (k0 < m && f.id[k0] < 0) ++k0;
+  if (k0 == m) return false;
+  load(o, f.id[k0]);
+  bool spanned = false;
+  for (std::size_t k = k0 + 1; k + 1 < m && !spanned; ++k) {
+    if (f.id[k] < 0 || f.id[k + 1] < 0) continue;
+    load(q, f.id[k]);
+    load(r, f.id[k + 1]);
+    for (int c = 0; c < 3; ++c) { q[c] = q[c] - o[c]; r[c] = r[c] - o[c]; }
+    n = {q[1] * r[2] - q[2] * r[1], q[2] * r[0] - q[0] * r[2], q[0] * r[1] - q[1] * r[0]};
+    spanned = n[0].sign() != 0 || n[1].sign() != 0 || n[2].sign() != 0;
+  }
+  if (!spanned) return false;
+  std::array<M, 3> d;
+  load(d, v);
+  for (int c = 0; c < 3; ++c) d[c] = d[c] - o[c];
+  return (n[0] * d[0] + n[1] * d[1] + n[2] * d[2]).sign() == 0;
+}
+
+// sign(depth of p - depth of f's plane under p). Where p is input vertex id (or
+// -1) and world the input's vertices, an exact zero (a vertex of a coplanar
+// neighbour: common on flat parts of a mesh) is found without rationals.
+CGAL::Sign depth_above(const P3& p, const Facet& f, const std::vector<Vec3>* world = nullptr, long id = -1) {
   return filtered_sign(
       [&] { return approx_of(p.z) - (approx_of(f.a) * approx_of(p.x) + approx_of(f.b) * approx_of(p.y) + approx_of(f.c)); },
       [&]() -> mpq_class {
+        if (world && id >= 0 && in_world_plane(*world, id, f)) return 0;
         return to_mpq(p.z) - (to_mpq(f.a) * to_mpq(p.x) + to_mpq(f.b) * to_mpq(p.y) + to_mpq(f.c));
       });
 }
 
 // Both points strictly behind the plane of b: the whole segment is. (Used with b
 // a cell's blocker.)
-bool curve_behind(const Curve& cv, const Facet& b) {
+bool curve_behind(const Curve& cv, const Facet& b, const std::vector<Vec3>* world) {
   // (Or all its depths beyond b's over the cell, which b covers: hidden there.)
   if (std::min(approx_of(cv.s.z).inf(), approx_of(cv.t.z).inf()) > b.zhi) return true;
   // An end point that is a corner of b lies in its plane: known without arithmetic
   // (the exact zero no filter can settle).
   if (b.has_vertex(cv.vs) || b.has_vertex(cv.vt)) return false;
-  return depth_above(cv.s, b) == CGAL::POSITIVE && depth_above(cv.t, b) == CGAL::POSITIVE;
+  return depth_above(cv.s, b, world, cv.vs) == CGAL::POSITIVE && depth_above(cv.t, b, world, cv.vt) == CGAL::POSITIVE;
 }
 
 // The segment s-t meets the closed cell (its bounding box is known to): not all
@@ -301,13 +338,13 @@ bool common_edge(const Facet& A, const Facet& B, long u, long v) {
 
 // Where facets A and B cross in 3D strictly inside both projections, as a screen
 // segment; false when they do not, or only along an edge of either.
-bool intersection_segment(const Facet& A, const Facet& B, P2& p, P2& q) {
+bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3>* world, P2& p, P2& q) {
   // Newell's tests 3 and 4: one facet entirely on one side of the other's plane.
-  auto one_side = [](const Facet& F, const Facet& G) {
+  auto one_side = [&](const Facet& F, const Facet& G) {
     bool pos = false, neg = false;
     for (std::size_t k = 0; k < F.v.size(); ++k) {
       if (G.has_vertex(F.id[k])) continue;   // a shared corner: in G's plane, known without arithmetic
-      const CGAL::Sign s = depth_above(F.v[k], G);
+      const CGAL::Sign s = depth_above(F.v[k], G, world, F.id[k]);
       pos |= s == CGAL::POSITIVE;
       neg |= s == CGAL::NEGATIVE;
     }
@@ -405,7 +442,7 @@ void add_intersection_lines(Grid& g, ScreenScene& ss, Stats& stats) {
       const Facet& B = ss.facets[fb];
       ++tested;
       P2 p, q;
-      if (!intersection_segment(A, B, p, q)) continue;
+      if (!intersection_segment(A, B, ss.world, p, q)) continue;
       ++found;
       ss.curves.push_back(intersection_curve(P3(p, A.depth_at(p)), P3(q, A.depth_at(q)), fa, fb, A.face, B.face));
     }
@@ -429,7 +466,7 @@ void bucket_curves(Grid& g, const ScreenScene& ss, Stats& stats) {
         // (A cell the double box reaches only by rounding may be kept: harmless,
         // cut points count only in the cell that holds them.)
         if ((r.x0 != r.x1 || r.y0 != r.y1) && !meets_cell(cv.s, cv.t, corners(g, ix, iy))) continue;
-        if (cell.blocker >= 0 && curve_behind(cv, ss.facets[cell.blocker])) continue;
+        if (cell.blocker >= 0 && curve_behind(cv, ss.facets[cell.blocker], ss.world)) continue;
         cell.curves.push_back(ci);
         kept = true;
         ++listed;

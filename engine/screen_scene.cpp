@@ -280,6 +280,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     for (auto id : f.v)
       if (local[id] == ~0u) { local[id] = static_cast<std::uint32_t>(used.size()); used.push_back(id); }
   ScreenScene ss;
+  ss.world = &scene.vertices;
   const int k = ss.scale_exp = screen_scale(scene, used, view);
   std::vector<FT> hz;   // homogeneous Z, for clipping at the near plane (perspective)
   if (view.perspective) hz.resize(used.size());

@@ -54,6 +54,7 @@ struct ScreenScene {
   std::vector<Facet> facets;
   std::vector<Curve> curves;
   int scale_exp = 0;             // screen coordinates are the spec's times 2^scale_exp
+  const std::vector<Vec3>* world = nullptr;   // the input's vertices (canonical ids index them)
 };
 
 ScreenScene make_screen_scene(const Scene& scene, const View& view, const EngineOptions& opt,
