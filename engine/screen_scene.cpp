@@ -36,19 +36,6 @@ using Num = mpq_class;
 mpq_class num(const FT& x) { return to_mpq(x); }
 #endif
 
-// A projected coordinate as a kernel number. In a view along an axis (CAD's
-// front, top and side views) it is often a double exactly: then a double
-// constant, whose interval is the point itself and costs nothing to find.
-FT screen_number(const mpq_class& q) {
-#ifndef VISMAP_FLOAT_KERNEL
-  const mpz_srcptr num = q.get_num_mpz_t(), den = q.get_den_mpz_t();
-  if (mpz_popcount(den) == 1 && mpz_sizeinbase(num, 2) <= 53 && mpz_sizeinbase(den, 2) <= 1075)
-    return FT(q.get_d());   // (exact: 53 bits over a power of two)
-#endif
-  return from_mpq(q);
-}
-
-
 // sum_c m[c] v[c] + m[3] in doubles, where every product and every partial sum
 // is exact (checked: fma residuals and two-sum errors zero, nothing near
 // underflow or overflow); false otherwise. Views along an axis (CAD's front,
