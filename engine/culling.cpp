@@ -1,28 +1,15 @@
 #include "engine/culling.h"
 
-#include <CGAL/Interval_nt.h>
-#include <CGAL/Mpzf.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
 #include "engine/union_find.h"
+#include "engine/world_exact.h"
 
 namespace vismap::engine {
 namespace {
-
-// Six times the signed volume of the tetrahedron (o, a, b, c), in any number
-// type: Interval_nt (under upward rounding: an interval around it) or
-// CGAL::Mpzf (exactly: differences and products of doubles are binary floats,
-// so no gcd is ever taken).
-template <class N>
-N det(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const N ax = N(a.x) - N(o.x), ay = N(a.y) - N(o.y), az = N(a.z) - N(o.z);
-  const N bx = N(b.x) - N(o.x), by = N(b.y) - N(o.y), bz = N(b.z) - N(o.z);
-  const N cx = N(c.x) - N(o.x), cy = N(c.y) - N(o.y), cz = N(c.z) - N(o.z);
-  return ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx);
-}
 
 }  // namespace
 
@@ -85,7 +72,7 @@ std::vector<std::int8_t> closed_component_sides(
       if (!closed[c]) continue;
       const auto& v = wf.facets[f].v;
       for (std::size_t k = 1; k + 1 < v.size(); ++k)
-        volume[c] += det<Interval>(origin[c], scene.vertices[v[0]], scene.vertices[v[k]], scene.vertices[v[k + 1]]);
+        volume[c] += world::det<Interval>(origin[c], scene.vertices[v[0]], scene.vertices[v[k]], scene.vertices[v[k + 1]]);
     }
   }
   std::vector<std::int8_t> sign(n, 0);
@@ -107,7 +94,7 @@ std::vector<std::int8_t> closed_component_sides(
       if (!closed[c] || sign[c] != 0) continue;
       const auto& v = wf.facets[f].v;
       for (std::size_t k = 1; k + 1 < v.size(); ++k)
-        exact[c] = exact[c] + det<CGAL::Mpzf>(origin[c], scene.vertices[v[0]], scene.vertices[v[k]], scene.vertices[v[k + 1]]);
+        exact[c] = exact[c] + world::det<CGAL::Mpzf>(origin[c], scene.vertices[v[0]], scene.vertices[v[k]], scene.vertices[v[k + 1]]);
     }
     for (int c = 0; c < n; ++c)
       if (closed[c] && uf.find(c) == c && sign[c] == 0) sign[c] = static_cast<std::int8_t>(exact[c].sign());

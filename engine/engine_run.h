@@ -23,11 +23,14 @@ inline VisibilityMap start_map(const Scene& scene, const View& view) {
   return map;
 }
 
-// x / 2^k, exactly (the engines' screen scale, ScreenScene::scale_exp, undone).
-inline void unscale(mpq_class& x, int k) {
-  if (k > 0) mpq_div_2exp(x.get_mpq_t(), x.get_mpq_t(), k);
-  if (k < 0) mpq_mul_2exp(x.get_mpq_t(), x.get_mpq_t(), -k);
+// x * 2^k, exactly.
+inline void times_pow2(mpq_class& x, int k) {
+  if (k > 0) mpq_mul_2exp(x.get_mpq_t(), x.get_mpq_t(), k);
+  if (k < 0) mpq_div_2exp(x.get_mpq_t(), x.get_mpq_t(), -k);
 }
+
+// x / 2^k (the engines' screen scale, ScreenScene::scale_exp, undone).
+inline void unscale(mpq_class& x, int k) { times_pow2(x, -k); }
 
 // The finished map's vertices back in the spec's screen coordinates. (Scaling
 // by a power of two keeps their lexicographic order: the map stays canonical.)

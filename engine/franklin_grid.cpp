@@ -1,13 +1,12 @@
 #include "engine/franklin_grid.h"
 
-#include <CGAL/Mpzf.h>
-
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
 
 #include "engine/convex_inside.h"
 #include "engine/union_find.h"
+#include "engine/world_exact.h"
 
 namespace vismap::engine {
 VISMAP_KERNEL_BEGIN
@@ -134,32 +133,20 @@ bool behind_throughout(const Facet& f, const Facet& b, const std::array<Corner, 
 // (the projection keeps planes and incidences) on binary floats, with no gcd:
 // det(q - o, r - o, v - o) for corners o, q, r of f that span its plane. False
 // when f has no three such corners in the input (cut at the near plane).
-bool in_world_plane(const std::vector<Vec3>& world, long v, const Facet& f) {
+bool in_world_plane(const std::vector<Vec3>& input, long v, const Facet& f) {
   using M = CGAL::Mpzf;
-  std::array<M, 3> o, q, r, n;
-  auto load = [&](std::array<M, 3>& x, long id) {
-    const Vec3& w = world[static_cast<std::size_t>(id)];
-    x = {M(w.x), M(w.y), M(w.z)};
-  };
+  auto at = [&](long id) -> const Vec3& { return input[static_cast<std::size_t>(id)]; };
   const std::size_t m = f.id.size();
   std::size_t k0 = 0;
   while (k0 < m && f.id[k0] < 0) ++k0;
-  if (k0 == m) return false;
-  load(o, f.id[k0]);
-  bool spanned = false;
-  for (std::size_t k = k0 + 1; k + 1 < m && !spanned; ++k) {
+  for (std::size_t k = k0 + 1; k + 1 < m; ++k) {
     if (f.id[k] < 0 || f.id[k + 1] < 0) continue;
-    load(q, f.id[k]);
-    load(r, f.id[k + 1]);
-    for (int c = 0; c < 3; ++c) { q[c] = q[c] - o[c]; r[c] = r[c] - o[c]; }
-    n = {q[1] * r[2] - q[2] * r[1], q[2] * r[0] - q[0] * r[2], q[0] * r[1] - q[1] * r[0]};
-    spanned = n[0].sign() != 0 || n[1].sign() != 0 || n[2].sign() != 0;
+    const Vec3 &o = at(f.id[k0]), &q = at(f.id[k]), &r = at(f.id[k + 1]);
+    const auto n = world::normal_of<M>(o, q, r);
+    if (n[0].sign() == 0 && n[1].sign() == 0 && n[2].sign() == 0) continue;   // collinear corners
+    return world::det<M>(o, q, r, at(v)).sign() == 0;
   }
-  if (!spanned) return false;
-  std::array<M, 3> d;
-  load(d, v);
-  for (int c = 0; c < 3; ++c) d[c] = d[c] - o[c];
-  return (n[0] * d[0] + n[1] * d[1] + n[2] * d[2]).sign() == 0;
+  return false;
 }
 
 // sign(depth of p - depth of f's plane under p). Where p is input vertex id (or

@@ -1,7 +1,5 @@
 #include "engine/screen_scene.h"
 
-#include <CGAL/Mpzf.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -9,7 +7,9 @@
 #include "engine/culling.h"
 #include "engine/lazy_leaves.h"
 #include "engine/edge_pieces.h"
+#include "engine/engine_run.h"
 #include "engine/morton.h"
+#include "engine/world_exact.h"
 
 namespace vismap::engine {
 VISMAP_KERNEL_BEGIN
@@ -96,13 +96,8 @@ FT scaled(double x, int k) {
   const double y = std::ldexp(x, k);
   if (x == 0 || (std::isfinite(y) && std::abs(y) >= 0x1p-1022)) return FT(y);
   mpq_class q(x);
-  if (k > 0) mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), k);
-  else mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), -k);
+  times_pow2(q, k);
   return from_mpq(q);
-}
-void scale(mpq_class& q, int k) {
-  if (k > 0) mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), k);
-  if (k < 0) mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), -k);
 }
 
 CGAL::Bbox_2 box_of(const P3& p) {
@@ -125,36 +120,18 @@ struct Spanning {
   Vec3 o, p, q;
 };
 
-// The normal (p - o) x (q - o) in number type N: intervals (under upward
-// rounding) or CGAL::Mpzf (exact: products of differences of doubles, no gcd).
-template <class N>
-std::array<N, 3> normal_of(const Vec3& o, const Vec3& p, const Vec3& q) {
-  const N ax = N(p.x) - N(o.x), ay = N(p.y) - N(o.y), az = N(p.z) - N(o.z);
-  const N bx = N(q.x) - N(o.x), by = N(q.y) - N(o.y), bz = N(q.z) - N(o.z);
-  return {ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx};
-}
-
-// Whether every coordinate is small enough for interval products of degree 8
-// (the crease test) never to overflow: an interval with an infinite bound is
-// not trusted (inf * 0 is NaN, which a max can drop).
-bool interval_safe(const std::initializer_list<const Vec3*> pts) {
-  for (const Vec3* v : pts)
-    if (!(std::abs(v->x) <= 0x1p100 && std::abs(v->y) <= 0x1p100 && std::abs(v->z) <= 0x1p100)) return false;
-  return true;
-}
-
 Spanning spanning_corners(const Scene& scene, const WorldFacet& w) {
   const auto& v = w.v;
   const Vec3& o = scene.vertices[v[0]];
   for (std::size_t k = 1; k + 1 < v.size(); ++k) {
     const Vec3 &p = scene.vertices[v[k]], &q = scene.vertices[v[k + 1]];
-    if (interval_safe({&o, &p, &q})) {
+    if (world::within(100, {&o, &p, &q})) {
       CGAL::Protect_FPU_rounding<true> upward;
-      const auto n = normal_of<Interval>(o, p, q);
+      const auto n = world::normal_of<Interval>(o, p, q);
       if (std::any_of(n.begin(), n.end(), [](const Interval& x) { return x.inf() > 0 || x.sup() < 0; }))
         return {o, p, q};
     }
-    const auto n = normal_of<CGAL::Mpzf>(o, p, q);
+    const auto n = world::normal_of<CGAL::Mpzf>(o, p, q);
     if (n[0].sign() != 0 || n[1].sign() != 0 || n[2].sign() != 0) return {o, p, q};
   }
   return {o, o, o};   // (a planar facet always has a spanning triple)
@@ -165,14 +142,15 @@ Spanning spanning_corners(const Scene& scene, const WorldFacet& w) {
 // d < 0 and d^2 > c^2 l. Signs from intervals first, exactly where they cannot tell.
 template <class N>
 std::pair<N, N> crease_terms(const Spanning& f, const Spanning& g, double c) {
-  const auto n1 = normal_of<N>(f.o, f.p, f.q), n2 = normal_of<N>(g.o, g.p, g.q);
+  const auto n1 = world::normal_of<N>(f.o, f.p, f.q), n2 = world::normal_of<N>(g.o, g.p, g.q);
   const N d = n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2];
   const N l = (n1[0] * n1[0] + n1[1] * n1[1] + n1[2] * n1[2]) * (n2[0] * n2[0] + n2[1] * n2[1] + n2[2] * n2[2]);
   return {d, d * d - N(c) * N(c) * l};
 }
 bool is_crease(const Spanning& f, const Spanning& g, double c) {
   int sd = 2, se = 2;   // signs of d and of d^2 - c^2 l (2: not known)
-  if (interval_safe({&f.o, &f.p, &f.q, &g.o, &g.p, &g.q})) {
+  // (Products of degree 8: coordinates within 2^100 cannot overflow them.)
+  if (world::within(100, {&f.o, &f.p, &f.q, &g.o, &g.p, &g.q})) {
     CGAL::Protect_FPU_rounding<true> upward;
     const auto [d, e] = crease_terms<Interval>(f, g, c);
     sd = d.inf() > 0 ? 1 : d.sup() < 0 ? -1 : 2;
@@ -306,8 +284,8 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     WorldPoint w = cut_at_near(world(a), world(b), hz[local[a]], hz[local[b]]);
     Homogeneous h = transform(view, w.x, w.y, w.z);
     mpq_class x = to_mpq(h.X / h.W), y = to_mpq(h.Y / h.W);
-    scale(x, k);
-    scale(y, k);
+    times_pow2(x, k);
+    times_pow2(y, k);
     return P3{from_mpq(x), from_mpq(y), FT(0)};   // on the near plane: depth 0 exactly
   };
 
