@@ -1,6 +1,5 @@
 #include "engine/culling.h"
 
-
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -9,13 +8,8 @@
 #include "engine/world_exact.h"
 
 namespace vismap::engine {
-namespace {
 
-}  // namespace
-
-std::vector<std::int8_t> closed_component_sides(
-    const Scene& scene, const WorldFacets& wf, const std::vector<WorldPiece>& pieces,
-    const View& view, const std::function<bool(std::uint32_t)>& vertex_in_front) {
+ClosedComponents closed_components(const Scene& scene, const WorldFacets& wf, const std::vector<WorldPiece>& pieces) {
   const int n = static_cast<int>(wf.facets.size());
   UnionFind uf(static_cast<std::size_t>(n));
   // A piece closes the surface when exactly two facets share it, traversing it in
@@ -35,8 +29,6 @@ std::vector<std::int8_t> closed_component_sides(
   for (int f = 0; f < n; ++f)
     if (!wf.facets[f].planar) closed[uf.find(f)] = 0;
 
-  // Eye outside: orthographic eyes are at infinity; a perspective eye must lie
-  // strictly outside the component's bounding box, and the near plane must not cut it.
   std::vector<Vec3> lo(n, Vec3{HUGE_VAL, HUGE_VAL, HUGE_VAL}), hi(n, Vec3{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL});
   std::vector<Vec3> origin(n);
   std::vector<char> has_origin(n, 0);
@@ -45,20 +37,11 @@ std::vector<std::int8_t> closed_component_sides(
     if (!closed[c]) continue;
     for (auto id : wf.facets[f].v) {
       const Vec3& p = scene.vertices[id];
-      if (view.perspective && !vertex_in_front(id)) closed[c] = 0;
       lo[c] = {std::min(lo[c].x, p.x), std::min(lo[c].y, p.y), std::min(lo[c].z, p.z)};
       hi[c] = {std::max(hi[c].x, p.x), std::max(hi[c].y, p.y), std::max(hi[c].z, p.z)};
       if (!has_origin[c]) { origin[c] = p; has_origin[c] = 1; }
     }
   }
-  if (view.perspective)
-    for (int c = 0; c < n; ++c) {
-      if (!closed[c] || uf.find(c) != c) continue;
-      const Vec3& e = view.eye;
-      bool inside_box = e.x >= lo[c].x && e.x <= hi[c].x && e.y >= lo[c].y && e.y <= hi[c].y &&
-                        e.z >= lo[c].z && e.z <= hi[c].z;
-      if (inside_box) closed[c] = 0;
-    }
 
   // Orientation of each closed component: the sign of its signed volume, a sum
   // of tetrahedra from one of its corners. Intervals settle it unless the
@@ -99,12 +82,80 @@ std::vector<std::int8_t> closed_component_sides(
     for (int c = 0; c < n; ++c)
       if (closed[c] && uf.find(c) == c && sign[c] == 0) sign[c] = static_cast<std::int8_t>(exact[c].sign());
   }
-  std::vector<std::int8_t> side(n, 0);
+  ClosedComponents cc;
+  cc.component.resize(n);
+  cc.side.assign(n, 0);
   for (int f = 0; f < n; ++f) {
-    int c = uf.find(f);
-    if (closed[c]) side[f] = sign[c];
+    const int c = cc.component[f] = uf.find(f);
+    if (closed[c]) cc.side[f] = sign[c];
   }
-  return side;
+  return cc;
+}
+
+std::vector<NearCap> near_caps(const WorldFacets& wf, const std::vector<WorldPiece>& pieces,
+                               const ClosedComponents& cc, const NearPlane& np) {
+  // The cut's curves: facets of closed components joined where the near plane
+  // passes from one to the other, across a piece that crosses or touches it
+  // (a vertex on the plane joins every facet around it). Each connected curve
+  // then lies within one set.
+  const int n = static_cast<int>(wf.facets.size());
+  UnionFind uf(static_cast<std::size_t>(n));
+  std::vector<char> touched(n, 0);
+  for (const WorldPiece& p : pieces) {
+    if (p.sharers.empty() || cc.side[p.sharers[0].facet] == 0) continue;
+    const int za = np.z_sign(p.a), zb = np.z_sign(p.b);
+    if (za > 0 && zb > 0) continue;
+    if ((za > 0) == (zb > 0) && za != 0 && zb != 0) continue;   // wholly behind
+    for (const Sharer& s : p.sharers) {
+      touched[s.facet] = 1;
+      uf.join(p.sharers[0].facet, s.facet);
+    }
+  }
+  // Each set's box: the facets' cuts and the vertices on the plane.
+  std::vector<CGAL::Bbox_2> box(n);
+  std::vector<char> has_box(n, 0);
+  auto add = [&](int f, const CGAL::Bbox_2& b) {
+    const int r = uf.find(f);
+    box[r] = has_box[r] ? box[r] + b : b;
+    has_box[r] = 1;
+  };
+  for (int f = 0; f < n; ++f) {
+    if (!touched[f]) continue;
+    CGAL::Bbox_2 b;
+    if (np.facet_cut(f, b)) add(f, b);
+    for (auto id : wf.facets[f].v)
+      if (np.z_sign(id) == 0) add(f, np.on_plane(id));
+  }
+  std::vector<NearCap> caps;
+  for (int r = 0; r < n; ++r)
+    if (has_box[r] && uf.find(r) == r) caps.push_back({cc.component[r], box[r]});
+  return caps;
+}
+
+std::vector<char> hidden_when_back_facing(const ClosedComponents& cc, const std::vector<NearCap>& caps,
+                                          const std::vector<CGAL::Bbox_2>& facet_box) {
+  const std::size_t n = cc.side.size();
+  // Each component's caps; past a few dozen, one box holding them all (larger, so
+  // still safe) keeps the test per facet short.
+  std::vector<std::vector<CGAL::Bbox_2>> of(n);
+  for (const NearCap& c : caps) of[static_cast<std::size_t>(c.component)].push_back(c.box);
+  for (auto& boxes : of)
+    if (boxes.size() > 32) {
+      CGAL::Bbox_2 all = boxes[0];
+      for (const auto& b : boxes) all += b;
+      boxes = {all};
+    }
+  // Apart: separated by a gap in x or in y (the boxes contain the exact images).
+  auto apart = [](const CGAL::Bbox_2& a, const CGAL::Bbox_2& b) {
+    return a.xmax() < b.xmin() || b.xmax() < a.xmin() || a.ymax() < b.ymin() || b.ymax() < a.ymin();
+  };
+  std::vector<char> hidden(n, 0);
+  for (std::size_t f = 0; f < n; ++f) {
+    if (cc.side[f] == 0) continue;
+    const auto& boxes = of[static_cast<std::size_t>(cc.component[f])];
+    hidden[f] = std::all_of(boxes.begin(), boxes.end(), [&](const CGAL::Bbox_2& b) { return apart(facet_box[f], b); });
+  }
+  return hidden;
 }
 
 }  // namespace vismap::engine

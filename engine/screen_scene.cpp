@@ -251,6 +251,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   if (view.perspective) hz.resize(used.size());
   std::vector<P3> sv(used.size());
   std::vector<char> front(used.size(), 0);
+  std::vector<std::int8_t> zsign(used.size(), 1);   // sign of Z (perspective): the near plane is Z = 0
   // Input vertices: exact values that no rational arithmetic is done for unless
   // a predicate needs them (engine/lazy_leaves.h).
   for (std::uint32_t u = 0; u < used.size(); ++u) {
@@ -269,7 +270,8 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     // Perspective: X/W, Y/W, Z/W as lazy leaves (the quotient's interval now),
     // kept where Z > 0 and W > 0 (decided exactly on binary floats).
     hz[u] = projected_number(view.m[2], p, 0);   // (for clipping at the near plane)
-    front[u] = projected_sign(view.m[2], p) > 0 && projected_sign(view.m[3], p) > 0;
+    zsign[u] = static_cast<std::int8_t>(projected_sign(view.m[2], p));
+    front[u] = zsign[u] > 0 && projected_sign(view.m[3], p) > 0;
     if (!front[u]) continue;
     sv[u] = P3{perspective_number(view.m[0], view.m[3], p, k), perspective_number(view.m[1], view.m[3], p, k),
                perspective_number(view.m[2], view.m[3], p, k)};
@@ -280,13 +282,15 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     const Vec3& p = scene.vertices[id];
     return WorldPoint{FT(p.x), FT(p.y), FT(p.z)};
   };
-  auto clip_point = [&](std::uint32_t a, std::uint32_t b) {
-    WorldPoint w = cut_at_near(world(a), world(b), hz[local[a]], hz[local[b]]);
+  auto near_image = [&](const WorldPoint& w) {   // a point on the near plane: depth 0 exactly
     Homogeneous h = transform(view, w.x, w.y, w.z);
     mpq_class x = to_mpq(h.X / h.W), y = to_mpq(h.Y / h.W);
     times_pow2(x, k);
     times_pow2(y, k);
-    return P3{from_mpq(x), from_mpq(y), FT(0)};   // on the near plane: depth 0 exactly
+    return P3{from_mpq(x), from_mpq(y), FT(0)};
+  };
+  auto clip_point = [&](std::uint32_t a, std::uint32_t b) {
+    return near_image(cut_at_near(world(a), world(b), hz[local[a]], hz[local[b]]));
   };
 
   ss.facets.resize(wf.facets.size());
@@ -378,19 +382,38 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   stats.count("culled_outside_view", outside);
   stats.count("culled_edge_on", edge_on);
 
-  // Back faces of closed components seen from outside hide nothing that their
-  // component's front faces do not already hide.
-  auto side = closed_component_sides(scene, wf, pieces, view, in_front);
+  // Back faces of closed components hide nothing that their component's front
+  // faces do not already hide, unless seen through a cap of the near plane's cut
+  // (engine/culling.h).
+  const ClosedComponents cc = closed_components(scene, wf, pieces);
+  std::vector<NearCap> caps;
+  if (view.perspective) {
+    NearPlane np;
+    np.z_sign = [&](std::uint32_t id) { return static_cast<int>(zsign[local[id]]); };
+    np.facet_cut = [&](int fi, CGAL::Bbox_2& b) {
+      const auto& ce = clip_edges[static_cast<std::size_t>(fi)];
+      if (ce.size() != 2) return false;
+      b = box_of(ce[0]) + box_of(ce[1]);
+      return true;
+    };
+    np.on_plane = [&](std::uint32_t id) { return box_of(near_image(world(id))); };
+    caps = near_caps(wf, pieces, cc, np);
+  }
+  std::vector<CGAL::Bbox_2> facet_box(ss.facets.size());
+  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) facet_box[fi] = ss.facets[fi].box;
+  const std::vector<char> hidden_back = hidden_when_back_facing(cc, caps, facet_box);
   std::int64_t back = 0;
   for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) {
     Facet& f = ss.facets[fi];
-    if (!f.occluder || side[fi] == 0) continue;
-    if ((side[fi] > 0 && f.facing == Facing::Back) || (side[fi] < 0 && f.facing == Facing::Front)) {
+    const int side = cc.side[fi];
+    if (!f.occluder || !hidden_back[fi]) continue;
+    if ((side > 0 && f.facing == Facing::Back) || (side < 0 && f.facing == Facing::Front)) {
       f.occluder = false;
       ++back;
     }
   }
   stats.count("culled_back_faces", back);
+  stats.count("near_plane_caps", static_cast<std::int64_t>(caps.size()));
 
   // Each facet's spanning corners in the world, for the crease angle (found when first needed).
   std::vector<Spanning> spanning(wf.facets.size());
