@@ -13,30 +13,18 @@ VISMAP_KERNEL_BEGIN
 namespace {
 
 
-// Index of the cell holding double coordinate v: the last boundary <= v (clamped).
-int cell_index(const std::vector<double>& bounds, double v) {
-  // The cells are equal but for rounding: guess arithmetically, then step to
-  // the cell whose bounds hold v (as the binary search over bounds would find).
-  const int last = static_cast<int>(bounds.size()) - 2;
-  const double t = (v - bounds[0]) / (bounds[last + 1] - bounds[0]) * (last + 1);
-  int i = t > 0 ? (t < last ? static_cast<int>(t) : last) : 0;   // (NaN: 0)
-  while (i > 0 && v < bounds[i]) --i;
-  while (i < last && v >= bounds[i + 1]) ++i;
-  return i;
-}
-
 // The cell that holds a coordinate under the half-open rule [X_i, X_i+1) (the
 // last cell is closed): guessed from its interval iv, confirmed on the interval
 // or, where that cannot tell, on its exact value (exact() -> mpq_class).
 template <class Exact>
-int cell_index_of(const std::vector<double>& bounds, const Interval& iv, Exact&& exact) {
-  const int last = static_cast<int>(bounds.size()) - 2;
+int cell_index_of(const Axis& bounds, const Interval& iv, Exact&& exact) {
+  const int last = bounds.cells() - 1;
   auto less = [&](double b) {   // v < b
     if (iv.sup() < b) return true;
     if (iv.inf() >= b) return false;
     return exact() < b;
   };
-  int i = cell_index(bounds, CGAL::to_double(iv));
+  int i = bounds.index(CGAL::to_double(iv));
   while (i > 0 && less(bounds[i])) --i;
   while (i < last && !less(bounds[i + 1])) ++i;
   return i;
@@ -46,8 +34,7 @@ struct CellRange {
   int x0, x1, y0, y1;
 };
 CellRange range_of(const Grid& g, const CGAL::Bbox_2& b) {
-  return {cell_index(g.X, b.xmin()), cell_index(g.X, b.xmax()), cell_index(g.Y, b.ymin()),
-          cell_index(g.Y, b.ymax())};
+  return {g.X.index(b.xmin()), g.X.index(b.xmax()), g.Y.index(b.ymin()), g.Y.index(b.ymax())};
 }
 
 // A cell corner: exact doubles. The corner tests are the most numerous predicates
@@ -182,9 +169,19 @@ bool meets_cell(const P3& s, const P3& t, const std::array<Corner, 4>& c) {
   return false;
 }
 
-// The depth complexity: the occluders' projected area over the screen box's
-// (doubles: it only sizes the grid).
-double depth_complexity(const ScreenScene& ss, const CGAL::Bbox_2& box) {
+// Where coordinate v falls among an axis's cells, as a fraction of the axis
+// (0 at its first boundary, 1 at its last): the grid's own coordinates, in which
+// every cell has the same size.
+double warped(const Axis& a, double v) {
+  const int i = a.index(v);
+  const double w = a[i + 1] - a[i];
+  return (i + std::clamp((v - a[i]) / w, 0.0, 1.0)) / a.cells();
+}
+
+// The depth complexity: the occluders' projected area over the screen's, both
+// in the grid's own coordinates (doubles: it only sizes the grid). Each facet's
+// area is scaled by how its bounding box is stretched there.
+double depth_complexity(const ScreenScene& ss, const Axis& X, const Axis& Y) {
   double area = 0;
   for (const Facet& f : ss.facets) {
     if (!f.occluder) continue;
@@ -195,57 +192,141 @@ double depth_complexity(const ScreenScene& ss, const CGAL::Bbox_2& box) {
       a += CGAL::to_double(approx_of(p.x)) * CGAL::to_double(approx_of(q.y)) -
            CGAL::to_double(approx_of(q.x)) * CGAL::to_double(approx_of(p.y));
     }
-    area += std::abs(a) / 2;
+    const double w = f.box.xmax() - f.box.xmin(), h = f.box.ymax() - f.box.ymin();
+    if (!(w > 0 && h > 0)) continue;
+    const double sx = (warped(X, f.box.xmax()) - warped(X, f.box.xmin())) / w;
+    const double sy = (warped(Y, f.box.ymax()) - warped(Y, f.box.ymin())) / h;
+    area += std::abs(a) / 2 * sx * sy;
   }
-  const double screen = (box.xmax() - box.xmin()) * (box.ymax() - box.ymin());
-  return screen > 0 && std::isfinite(area / screen) ? area / screen : 5;
+  return std::isfinite(area) ? area : 5;
+}
+
+// The mean length of the curves in the grid's own coordinates (Franklin's L),
+// on a sample of them.
+double mean_length(const ScreenScene& ss, const Axis& X, const Axis& Y) {
+  const std::size_t n = ss.curves.size(), step = std::max<std::size_t>(1, n / 4096);
+  double sum = 0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < n; i += step, ++count) {
+    const CGAL::Bbox_2& b = ss.curves[i].box;
+    sum += std::hypot(warped(X, b.xmax()) - warped(X, b.xmin()), warped(Y, b.ymax()) - warped(Y, b.ymin()));
+  }
+  return count ? sum / static_cast<double>(count) : 0;
+}
+
+// Up to B cells from lo to hi whose boundaries split the sorted values v into
+// runs of about equal count: cells are small where the drawing is dense (far
+// parts of a perspective view) and large where it is sparse (near parts). Each
+// boundary lies halfway between two different values, so it seldom falls on a
+// vertex. Strictly increasing doubles, the first and last lo and hi (exact).
+std::vector<double> quantile_bounds(const std::vector<double>& v, int B, double lo, double hi) {
+  std::vector<double> b{lo};
+  const std::size_t m = v.size();
+  for (int i = 1; i < B; ++i) {
+    std::size_t j = std::max<std::size_t>(1, static_cast<std::size_t>(i) * m / static_cast<std::size_t>(B));
+    while (j < m && v[j - 1] == v[j]) ++j;
+    if (j >= m) break;
+    const double x = v[j - 1] + (v[j] - v[j - 1]) / 2;
+    if (x > b.back() && x < hi) b.push_back(x);
+  }
+  b.push_back(hi > b.back() ? hi : std::nextafter(b.back(), HUGE_VAL));
+  return b;
+}
+
+// The curves' end point coordinates along x (y: false), sorted: a sample of
+// about `want` values, taken evenly from the curves (which are in screen order).
+std::vector<double> end_coordinates(const ScreenScene& ss, bool x, std::size_t want) {
+  const std::size_t n = ss.curves.size(), step = std::max<std::size_t>(1, 2 * n / std::max<std::size_t>(want, 1));
+  std::vector<double> v;
+  v.reserve(2 * n / step + 2);
+  for (std::size_t i = 0; i < n; i += step) {
+    const CGAL::Bbox_2& b = ss.curves[i].box;
+    v.push_back(x ? b.xmin() : b.ymin());
+    v.push_back(x ? b.xmax() : b.ymax());
+  }
+  std::sort(v.begin(), v.end());
+  return v;
 }
 
 }  // namespace
 
+Axis::Axis(std::vector<double> bounds) : bounds_(std::move(bounds)) {
+  const double lo = bounds_.front(), hi = bounds_.back();
+  const int bins = 4 * cells();
+  lo_ = lo;
+  bins_per_unit_ = hi > lo ? bins / (hi - lo) : 0;
+  if (!std::isfinite(bins_per_unit_)) bins_per_unit_ = 0;
+  first_.resize(static_cast<std::size_t>(bins) + 1);
+  int i = 0;
+  for (int k = 0; k <= bins; ++k) {
+    const double start = lo + k / bins_per_unit_;
+    while (i + 1 < cells() && bounds_[static_cast<std::size_t>(i) + 1] <= start) ++i;
+    first_[static_cast<std::size_t>(k)] = i;
+  }
+}
+
+int Axis::index(double v) const {
+  const int last = cells() - 1;
+  const int bins = static_cast<int>(first_.size()) - 1;
+  const double t = (v - lo_) * bins_per_unit_;
+  const int k = t > 0 ? (t < bins ? static_cast<int>(t) : bins - 1) : 0;   // (NaN: 0)
+  // The cell is among first_[k] .. first_[k + 1] (unless rounding put v in a
+  // neighbouring bin: the steps below then correct it).
+  int i = first_[static_cast<std::size_t>(k)], j = first_[static_cast<std::size_t>(k) + 1];
+  while (i < j) {
+    const int m = (i + j + 1) / 2;
+    if (bounds_[static_cast<std::size_t>(m)] <= v) i = m;
+    else j = m - 1;
+  }
+  while (i > 0 && v < bounds_[static_cast<std::size_t>(i)]) --i;
+  while (i < last && v >= bounds_[static_cast<std::size_t>(i) + 1]) ++i;
+  return i;
+}
+
 // Steps 2-4: B = c * min(sqrt(N), 1/L) cells per side over the projected scene.
+// Franklin's cells are equal; here each axis is cut at quantiles of the curves'
+// end points instead, so that the cells follow the drawing where projected sizes
+// vary (a close-up in perspective: near faces thousands of times larger than far
+// ones), and N, L and the depth complexity are measured in those coordinates.
 Grid make_grid(const ScreenScene& ss, double c, Stats& stats) {
   CGAL::Bbox_2 box;
   bool any = false;
-  double total_len = 0;
   for (const Curve& cv : ss.curves) {
     box = any ? box + cv.box : cv.box;
     any = true;
-    total_len += std::hypot(cv.box.xmax() - cv.box.xmin(), cv.box.ymax() - cv.box.ymin());
   }
   for (const Facet& f : ss.facets)
     if (f.occluder) { box = any ? box + f.box : f.box; any = true; }
+  if (!any) box = CGAL::Bbox_2(0, 0, 1, 1);
   Grid g;
-  const double size = any ? std::max(box.xmax() - box.xmin(), box.ymax() - box.ymin()) : 0;
   const double n = static_cast<double>(ss.curves.size());
-  if (any && size > 0 && n > 0) {
-    double L = total_len / n / size;   // mean projected edge length on a unit screen
+  const bool sized = any && std::max(box.xmax() - box.xmin(), box.ymax() - box.ymin()) > 0 && n > 0;
+  std::vector<double> xs, ys;
+  if (sized) {
+    // The grid's coordinates, from the finest grid the rule allows.
+    const int finest = static_cast<int>(std::clamp(4 * std::sqrt(n), 1.0, 4096.0));
+    xs = end_coordinates(ss, true, 32 * static_cast<std::size_t>(finest));
+    ys = end_coordinates(ss, false, 32 * static_cast<std::size_t>(finest));
+    const Axis X(quantile_bounds(xs, finest, box.xmin(), box.xmax()));
+    const Axis Y(quantile_bounds(ys, finest, box.ymin(), box.ymax()));
+    const double L = mean_length(ss, X, Y);   // mean curve length on a unit screen
     // Fine cells pay where many faces lie over each other (they let a blocking
     // face hide the rest cell by cell) and cost memory and bookkeeping where few
     // do: a mesh seen from outside, a terrain. c is scaled by sqrt(D / 5), within
     // [1/4, 1], D the depth complexity (measured: c = 4 is best at D = 5-10 on
     // random squares, c = 1-2 on meshes, where D is about 1).
-    const double D = depth_complexity(ss, box);
+    const double D = depth_complexity(ss, X, Y);
     c *= std::clamp(std::sqrt(D / 5), 0.25, 1.0);
     stats.count("depth_complexity_percent", static_cast<std::int64_t>(std::min(D, 1e9) * 100));
-    double b = c * std::min(std::sqrt(n), L > 0 ? 1 / L : std::sqrt(n));
+    const double b = c * std::min(std::sqrt(n), L > 0 ? 1 / L : std::sqrt(n));
     g.B = static_cast<int>(std::clamp(b, 1.0, 4096.0));
   }
-  if (!any) box = CGAL::Bbox_2(0, 0, 1, 1);
-  // Boundaries are doubles; the first and last are the box itself (exact bounds).
-  g.X.resize(g.B + 1);
-  g.Y.resize(g.B + 1);
-  const double w = (box.xmax() - box.xmin()) / g.B, h = (box.ymax() - box.ymin()) / g.B;
-  for (int i = 0; i <= g.B; ++i) {
-    g.X[i] = i == g.B ? box.xmax() : box.xmin() + i * w;
-    g.Y[i] = i == g.B ? box.ymax() : box.ymin() + i * h;
-  }
-  for (int i = 1; i <= g.B; ++i) {   // keep them strictly increasing
-    g.X[i] = std::max(g.X[i], std::nextafter(g.X[i - 1], HUGE_VAL));
-    g.Y[i] = std::max(g.Y[i], std::nextafter(g.Y[i - 1], HUGE_VAL));
-  }
-  g.cells.resize(static_cast<std::size_t>(g.B) * g.B);
+  g.X = Axis(sized ? quantile_bounds(xs, g.B, box.xmin(), box.xmax()) : std::vector<double>{box.xmin(), box.xmax()});
+  g.Y = Axis(sized ? quantile_bounds(ys, g.B, box.ymin(), box.ymax()) : std::vector<double>{box.ymin(), box.ymax()});
+  g.cells.resize(static_cast<std::size_t>(g.X.cells()) * g.Y.cells());
   stats.count("grid_B", g.B);
+  stats.count("grid_columns", g.X.cells());
+  stats.count("grid_rows", g.Y.cells());
   stats.count("grid_cells", static_cast<std::int64_t>(g.cells.size()));
   return g;
 }
@@ -294,8 +375,8 @@ void bucket_facets(Grid& g, ScreenScene& ss, Stats& stats) {
 void prune_facets(Grid& g, const ScreenScene& ss, Stats& stats) {
   std::int64_t pruned = 0;
   UpwardRounding upward;
-  for (int iy = 0; iy < g.B; ++iy)
-    for (int ix = 0; ix < g.B; ++ix) {
+  for (int iy = 0; iy < g.Y.cells(); ++iy)
+    for (int ix = 0; ix < g.X.cells(); ++ix) {
       Cell& cell = g.at(ix, iy);
       if (cell.blocker < 0) continue;
       auto c = corners(g, ix, iy);
@@ -732,8 +813,8 @@ void share_overlap_cuts(const ScreenScene& ss, std::vector<std::pair<int, int>>&
 std::vector<std::vector<P2>> cut_curves(Grid& g, const ScreenScene& ss, Stats& stats) {
   std::vector<std::vector<P2>> cuts(ss.curves.size());
   Cutter cutter{g, ss, cuts, 0, 0};
-  for (int iy = 0; iy < g.B; ++iy)
-    for (int ix = 0; ix < g.B; ++ix) {
+  for (int iy = 0; iy < g.Y.cells(); ++iy)
+    for (int ix = 0; ix < g.X.cells(); ++ix) {
       cutter.ix = ix;
       cutter.iy = iy;
       const Cell& cell = g.at(ix, iy);

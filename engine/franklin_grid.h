@@ -13,11 +13,30 @@ struct Cell {
   std::vector<int> curves;      // step 3c: curves meeting the cell, not behind the blocker
 };
 
+// One axis of the grid: its cells' boundaries (exact doubles, strictly
+// increasing), and a table of uniform bins that finds the cell of a coordinate
+// in a step or two where cells are of similar size, by binary search where they
+// are not.
+class Axis {
+ public:
+  Axis() = default;
+  explicit Axis(std::vector<double> bounds);
+  double operator[](int i) const { return bounds_[static_cast<std::size_t>(i)]; }
+  int cells() const { return static_cast<int>(bounds_.size()) - 1; }
+  // The cell holding v: the last boundary <= v (clamped to the first and last cell).
+  int index(double v) const;
+
+ private:
+  std::vector<double> bounds_;
+  std::vector<int> first_;      // first_[k]: the cell holding the start of bin k
+  double lo_ = 0, bins_per_unit_ = 0;
+};
+
 struct Grid {
-  int B = 1;                    // cells per side
-  std::vector<double> X, Y;     // B+1 cell boundaries each (exact doubles)
-  std::vector<Cell> cells;      // row-major: cells[iy * B + ix]
-  Cell& at(int ix, int iy) { return cells[static_cast<std::size_t>(iy) * B + ix]; }
+  int B = 1;                    // cells per side asked for (an axis may have fewer)
+  Axis X, Y;                    // cell boundaries
+  std::vector<Cell> cells;      // row-major: cells[iy * X.cells() + ix]
+  Cell& at(int ix, int iy) { return cells[static_cast<std::size_t>(iy) * X.cells() + ix]; }
 };
 
 // A piece of a curve between consecutive cut points, classified at its midpoint.
