@@ -70,8 +70,9 @@ std::string to_json(const VisibilityMap& map) {
   }
   for (const Segment& sg : map.segments) size += text[sg.from].size() + text[sg.to].size() + 60 + 12 * sg.faces.size();
   out.reserve(size);
-  out += "],\n\"regions\":[";
-  for (std::size_t i = 0; i < map.regions.size(); ++i) {
+  out += "],\n";
+  if (map.has_regions) out += "\"regions\":[";
+  for (std::size_t i = 0; i < map.regions.size() && map.has_regions; ++i) {
     const Region& g = map.regions[i];
     out += i ? ",\n" : "\n";
     out += "{\"face\":" + std::to_string(g.face) + ",\"outer\":";
@@ -83,7 +84,8 @@ std::string to_json(const VisibilityMap& map) {
     }
     out += "]}";
   }
-  out += "],\n\"segments\":[";
+  if (map.has_regions) out += "],\n";
+  out += "\"segments\":[";
   for (std::size_t i = 0; i < map.segments.size(); ++i) {
     const Segment& s = map.segments[i];
     out += i ? ",\n" : "\n";

@@ -281,13 +281,9 @@ int face_below(const Assembly& a, const Columns& cols, int w) {
   return -1;
 }
 
-}  // namespace
-
-void assemble_map(std::vector<MapPiece>& pieces, VisibilityMap& map) {
-  MapGraph g;
+// Edges: pieces from the smaller end, those on the same two vertices merged.
+void add_edges(std::vector<MapPiece>& pieces, MapGraph& g) {
   std::vector<int> vertex_of = number_end_points(pieces, g);
-
-  // Edges: pieces from the smaller end, those on the same two vertices merged.
   std::vector<int> order(pieces.size());
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     MapPiece& m = pieces[i];
@@ -306,6 +302,19 @@ void assemble_map(std::vector<MapPiece>& pieces, VisibilityMap& map) {
     g.attrs.push_back(edge_attr(pieces, &order[k], l - k, g.points[u], g.points[v]));
     k = l;
   }
+}
+
+}  // namespace
+
+void assemble_segments(std::vector<MapPiece>& pieces, VisibilityMap& map) {
+  MapGraph g;
+  add_edges(pieces, g);
+  write_segments_only(g, map);
+}
+
+void assemble_map(std::vector<MapPiece>& pieces, VisibilityMap& map) {
+  MapGraph g;
+  add_edges(pieces, g);
 
   Assembly a{g};
   a.sort_around_vertices();

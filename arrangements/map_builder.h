@@ -34,6 +34,11 @@ void build_map(std::vector<MapPiece>& pieces, VisibilityMap& map);
 // std::logic_error where the pieces break that promise in a way it detects.
 void assemble_map(std::vector<MapPiece>& pieces, VisibilityMap& map);
 
+// The segments of that map alone (map.has_regions false), from the drawn pieces
+// and the pieces of every curve that meets a drawn one (visible or bounding a
+// region), cut as assemble_map wants them; other pieces are not needed.
+void assemble_segments(std::vector<MapPiece>& pieces, VisibilityMap& map);
+
 VISMAP_KERNEL_END
 
 // A piece computed in doubles by the float variant of the engine (benchmarks

@@ -28,6 +28,103 @@ void rotate_canonical(std::vector<int>& ring) {
   std::rotate(ring.begin(), ring.begin() + static_cast<std::ptrdiff_t>(best), ring.end());
 }
 
+// Vertices of the arrangement that are vertices of the canonical map: where
+// other than two edges meet, or two that differ or bend (an edge that is not
+// drawn and has the same face on both sides is no edge of the arrangement: it
+// only kept a farther line from being drawn). `two`: a vertex's first two edges.
+struct Essential {
+  std::vector<char> essential;
+  std::vector<int> two;
+};
+Essential essential_vertices(const MapGraph& g) {
+  const int nedges = static_cast<int>(g.ends.size()), nverts = static_cast<int>(g.points.size());
+  auto inert = [&](int e) { return !g.attrs[e].drawn && g.attrs[e].left == g.attrs[e].right; };
+  std::vector<int> degree(nverts, 0);
+  Essential out;
+  out.two.assign(2 * static_cast<std::size_t>(nverts), -1);
+  for (int e = 0; e < nedges; ++e)
+    if (!inert(e))
+      for (int w : g.ends[e]) {
+        if (degree[w] < 2) out.two[2 * w + degree[w]] = e;
+        ++degree[w];
+      }
+  auto other_end = [&](int e, int w) { return g.ends[e][0] == w ? g.ends[e][1] : g.ends[e][0]; };
+  // A vertex where two collinear edges of the same attributes meet is not a vertex.
+  out.essential.assign(nverts, 1);
+  for (int w = 0; w < nverts; ++w)
+    if (degree[w] == 2) {
+      const int e1 = out.two[2 * w], e2 = out.two[2 * w + 1];
+      // (Pieces of one curve are collinear by construction: the exact zero that
+      // no filter settles is then never asked.)
+      out.essential[w] = !(g.attrs[e1].same_as(g.attrs[e2]) &&
+                           ((g.attrs[e1].line != nullptr && g.attrs[e1].line == g.attrs[e2].line) ||
+                            CGAL::orientation(g.points[other_end(e1, w)], g.points[w], g.points[other_end(e2, w)]) ==
+                                CGAL::COLLINEAR));
+    }
+  return out;
+}
+
+// A vertex's exact coordinates.
+Point2 exact_point(const MapGraph& g, int w) {
+  const auto& ap = g.approx[w];
+  if (ap.x().is_point() && ap.y().is_point())
+    // An interval of one double holds the exact value: no exact evaluation
+    // (crossings of axis-parallel lines, input vertices in axis views).
+    return Point2{mpq_class(ap.x().inf()), mpq_class(ap.y().inf())};
+  const auto& e = CGAL::exact(g.points[w]);
+  return Point2{to_mpq(e.x()), to_mpq(e.y())};
+}
+
+// Segments: maximal chains of drawn edges through superfluous vertices, each
+// walked from its smaller end (halfedges 2e run that way). Their ends are marked written.
+struct Chain {
+  int from, to, edge;
+};
+std::vector<Chain> drawn_chains(const MapGraph& g, const Essential& ess, std::vector<char>& written) {
+  auto target = [&](int h) { return g.ends[h >> 1][(h & 1) ^ 1]; };
+  std::vector<Chain> chains;
+  for (int e = 0; e < static_cast<int>(g.ends.size()); ++e) {
+    const EdgeAttr& a = g.attrs[e];
+    if (!a.drawn || !ess.essential[g.ends[e][0]]) continue;   // hidden, or not the start of its chain
+    int cur = 2 * e;
+    while (!ess.essential[target(cur)]) {
+      const int w = target(cur), here = cur >> 1;
+      const int o = ess.two[2 * w] == here ? ess.two[2 * w + 1] : ess.two[2 * w];
+      cur = g.ends[o][0] == w ? 2 * o : 2 * o + 1;
+    }
+    chains.push_back(Chain{g.ends[e][0], target(cur), e});
+    written[g.ends[e][0]] = written[target(cur)] = 1;
+  }
+  return chains;
+}
+
+// The written vertices, once each, numbered in vertex (lexicographic) order;
+// rings and segments refer to them by number, so canonical order is kept.
+// Returns each graph vertex's number in map.vertices.
+std::vector<std::uint32_t> write_vertices(const MapGraph& g, const std::vector<char>& written, VisibilityMap& map) {
+  std::vector<std::uint32_t> index(g.points.size(), 0);
+  map.vertices.reserve(static_cast<std::size_t>(std::count(written.begin(), written.end(), 1)));
+  for (std::size_t w = 0; w < g.points.size(); ++w)
+    if (written[w]) {
+      index[w] = static_cast<std::uint32_t>(map.vertices.size());
+      map.vertices.push_back(exact_point(g, static_cast<int>(w)));
+    }
+  return index;
+}
+
+void write_segments(const MapGraph& g, std::vector<Chain> chains, const std::vector<std::uint32_t>& index,
+                    VisibilityMap& map) {
+  std::sort(chains.begin(), chains.end(),
+            [](const Chain& a, const Chain& b) { return std::pair(a.from, a.to) < std::pair(b.from, b.to); });
+  map.segments.reserve(chains.size());
+  for (std::size_t i = 0; i < chains.size(); ++i) {
+    // The faces lists lie with the engine's curves, in another order: fetch ahead.
+    if (i + 16 < chains.size()) __builtin_prefetch(g.attrs[chains[i + 16].edge].faces);
+    const Chain& c = chains[i];
+    map.segments.push_back(Segment{index[c.from], index[c.to], g.attrs[c.edge].kind, *g.attrs[c.edge].faces});
+  }
+}
+
 }  // namespace
 
 EdgeAttr edge_attr(const std::vector<MapPiece>& pieces, const int* on_edge, std::size_t count, const P2& a,
@@ -84,41 +181,7 @@ void write_canonical(const MapGraph& g, VisibilityMap& map) {
     else if (l != x) throw std::logic_error("visibility map: inconsistent face labels (engine bug)");
   }
 
-  // Each vertex's degree and (for those of degree 2) its two edges. An edge that is
-  // not drawn and separates nothing (a visible smooth piece inside one region) is
-  // no edge of the arrangement: it only kept a farther line from being drawn.
-  auto inert = [&](int e) { return !g.attrs[e].drawn && label[g.face[2 * e]] == label[g.face[2 * e + 1]]; };
-  std::vector<int> degree(nverts, 0), two(2 * static_cast<std::size_t>(nverts), -1);
-  for (int e = 0; e < nedges; ++e)
-    if (!inert(e))
-      for (int w : g.ends[e]) {
-        if (degree[w] < 2) two[2 * w + degree[w]] = e;
-        ++degree[w];
-      }
-  auto other_end = [&](int e, int w) { return g.ends[e][0] == w ? g.ends[e][1] : g.ends[e][0]; };
-
-  // A vertex where two collinear edges of the same attributes meet is not a vertex.
-  std::vector<char> essential(nverts, 1);
-  for (int w = 0; w < nverts; ++w)
-    if (degree[w] == 2) {
-      const int e1 = two[2 * w], e2 = two[2 * w + 1];
-      // (Pieces of one curve are collinear by construction: the exact zero that
-      // no filter settles is then never asked.)
-      essential[w] = !(g.attrs[e1].same_as(g.attrs[e2]) &&
-                       ((g.attrs[e1].line != nullptr && g.attrs[e1].line == g.attrs[e2].line) ||
-                        CGAL::orientation(g.points[other_end(e1, w)], g.points[w], g.points[other_end(e2, w)]) ==
-                            CGAL::COLLINEAR));
-    }
-  // A vertex's exact coordinates.
-  auto point = [&](int w) {
-    const auto& ap = g.approx[w];
-    if (ap.x().is_point() && ap.y().is_point())
-      // An interval of one double holds the exact value: no exact evaluation
-      // (crossings of axis-parallel lines, input vertices in axis views).
-      return Point2{mpq_class(ap.x().inf()), mpq_class(ap.y().inf())};
-    const auto& e = CGAL::exact(g.points[w]);
-    return Point2{to_mpq(e.x()), to_mpq(e.y())};
-  };
+  const Essential ess = essential_vertices(g);
   std::vector<char> written(nverts, 0);
 
   // Regions: faces of one label joined across edges that separate nothing.
@@ -148,7 +211,7 @@ void write_canonical(const MapGraph& g, VisibilityMap& map) {
       int h = h0;
       do {
         visited[h] = 1;
-        if (essential[source(h)]) { ring.push_back(source(h)); written[source(h)] = 1; }
+        if (ess.essential[source(h)]) { ring.push_back(source(h)); written[source(h)] = 1; }
         const auto &p = g.approx[source(h)], &q = g.approx[target(h)];
         area += p.x() * q.y() - q.x() * p.y();
         int nx = g.next[h];
@@ -160,7 +223,7 @@ void write_canonical(const MapGraph& g, VisibilityMap& map) {
     if (area.inf() <= 0 && area.sup() > 0) {
       mpq_class s2 = 0;
       for (std::size_t i = 0; i < ring.size(); ++i) {
-        const Point2 p = point(ring[i]), q = point(ring[(i + 1) % ring.size()]);
+        const Point2 p = exact_point(g, ring[i]), q = exact_point(g, ring[(i + 1) % ring.size()]);
         s2 += p.x * q.y - q.x * p.y;
       }
       outer = sgn(s2) > 0;
@@ -185,33 +248,8 @@ void write_canonical(const MapGraph& g, VisibilityMap& map) {
     if (a.face != b.face) return a.face < b.face;
     return a.outer < b.outer;
   });
-  // Segments: maximal chains of drawn edges through superfluous vertices, each
-  // walked from its smaller end (halfedges 2e run that way).
-  struct Chain {
-    int from, to, edge;
-  };
-  std::vector<Chain> chains;
-  for (int e = 0; e < nedges; ++e) {
-    const EdgeAttr& a = g.attrs[e];
-    if (!a.drawn || !essential[g.ends[e][0]]) continue;   // hidden, or not the start of its chain
-    int cur = 2 * e;
-    while (!essential[target(cur)]) {
-      const int w = target(cur), here = cur >> 1;
-      const int o = two[2 * w] == here ? two[2 * w + 1] : two[2 * w];
-      cur = g.ends[o][0] == w ? 2 * o : 2 * o + 1;
-    }
-    chains.push_back(Chain{g.ends[e][0], target(cur), e});
-    written[g.ends[e][0]] = written[target(cur)] = 1;
-  }
-  // The written vertices, once each, numbered in vertex (lexicographic) order;
-  // rings and segments refer to them by number, so canonical order is kept.
-  std::vector<std::uint32_t> index(nverts, 0);
-  map.vertices.reserve(static_cast<std::size_t>(std::count(written.begin(), written.end(), 1)));
-  for (int w = 0; w < nverts; ++w)
-    if (written[w]) {
-      index[w] = static_cast<std::uint32_t>(map.vertices.size());
-      map.vertices.push_back(point(w));
-    }
+  std::vector<Chain> chains = drawn_chains(g, ess, written);
+  const std::vector<std::uint32_t> index = write_vertices(g, written, map);
   auto ring_of = [&](const std::vector<int>& ids) {
     Ring out;
     out.reserve(ids.size());
@@ -227,15 +265,14 @@ void write_canonical(const MapGraph& g, VisibilityMap& map) {
     map.regions.push_back(std::move(out));
   }
 
-  std::sort(chains.begin(), chains.end(),
-            [](const Chain& a, const Chain& b) { return std::pair(a.from, a.to) < std::pair(b.from, b.to); });
-  map.segments.reserve(chains.size());
-  for (std::size_t i = 0; i < chains.size(); ++i) {
-    // The faces lists lie with the engine's curves, in another order: fetch ahead.
-    if (i + 16 < chains.size()) __builtin_prefetch(g.attrs[chains[i + 16].edge].faces);
-    const Chain& c = chains[i];
-    map.segments.push_back(Segment{index[c.from], index[c.to], g.attrs[c.edge].kind, *g.attrs[c.edge].faces});
-  }
+  write_segments(g, std::move(chains), index, map);
+}
+
+void write_segments_only(const MapGraph& g, VisibilityMap& map) {
+  std::vector<char> written(g.points.size(), 0);
+  const std::vector<Chain> chains = drawn_chains(g, essential_vertices(g), written);
+  write_segments(g, chains, write_vertices(g, written, map), map);
+  map.has_regions = false;
 }
 
 VISMAP_KERNEL_END

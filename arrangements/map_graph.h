@@ -61,5 +61,10 @@ struct MapGraph {
 // into `map` in canonical order.
 void write_canonical(const MapGraph& g, VisibilityMap& map);
 
+// The segments alone (no regions; map.has_regions false), as write_canonical
+// writes them, from a graph that holds the drawn edges and every edge that
+// bounds a region where it meets them: the faces' labels beyond are not needed.
+void write_segments_only(const MapGraph& g, VisibilityMap& map);
+
 VISMAP_KERNEL_END
 }  // namespace vismap

@@ -59,6 +59,8 @@ struct VisibilityMap {
   Matrix4 view;                               // the exact matrix the engine used
   std::vector<Point2> vertices;               // distinct, in lexicographic order
   std::vector<Region> regions;                // canonical order (see map_canonical.cpp)
+  bool has_regions = true;                    // false: computed for its lines alone (a lines-only
+                                              // drawing); the JSON then has no "regions" key
   std::vector<Segment> segments;              // canonical order
   const Point2& at(std::uint32_t v) const { return vertices[v]; }
   std::vector<Point2> points(const Ring& r) const {   // (for readers that want coordinates)

@@ -29,6 +29,8 @@ outputs (files are written whole or not at all; "-" is standard output):
   -o, --svg FILE       SVG drawing: visible regions shaded, visible lines stroked
   --lines-only         SVG without filled regions (a hidden-line drawing)
   --json FILE          the exact map (format: shared/spec/vismap-json.md)
+  --no-regions         the JSON without its "regions" (only the segments: what a
+                       lines-only drawing needs, computed faster)
 camera (default: orthographic, the whole scene seen obliquely):
   --dir X,Y,Z          orthographic, looking along this direction
   --eye X,Y,Z          perspective eye point
@@ -96,7 +98,7 @@ int main(int argc, char** argv) {
   vismap::CameraSpec cam;
   vismap::EngineOptions eng;
   vismap::SvgOptions svg;
-  bool stats = false;
+  bool stats = false, no_regions = false;
   try {
     std::vector<std::string> args(argv + 1, argv + argc);
     for (std::size_t i = 0; i < args.size(); ++i) {
@@ -116,6 +118,7 @@ int main(int argc, char** argv) {
       }
       else if (a == "--json") json_path = value();
       else if (a == "--lines-only") svg.lines_only = true;
+      else if (a == "--no-regions") no_regions = true;
       else if (a == "--dir") cam.dir = parse_vec(a, value());
       else if (a == "--eye") cam.eye = parse_vec(a, value());
       else if (a == "--target") cam.target = parse_vec(a, value());
@@ -143,6 +146,7 @@ int main(int argc, char** argv) {
       else throw Usage("more than one scene given: " + scene_path + ", " + a);
     }
     if (scene_path.empty()) throw Usage("no scene file given");
+    if (no_regions && json_path.empty()) throw Usage("--no-regions applies to --json, which is not given");
     if (!svg_path.empty() && svg_path == json_path) throw Usage("--json and -o name the same file");
     if (!painter_path.empty() && eng.algorithm != vismap::Algorithm::Newell)
       throw Usage("--painter needs --algorithm newell (the fragments are Newell's)");
@@ -165,6 +169,10 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "vismap: %s\n", e.what());
       return 2;
     }
+    // Regions are computed only where an output shows them: a lines-only drawing
+    // and a JSON without regions need the segments alone (the same segments).
+    eng.regions = (!json_path.empty() && !no_regions) || (!svg_path.empty() && !svg.lines_only) || !painter_path.empty() ||
+                  (json_path.empty() && svg_path.empty());
     std::vector<vismap::PaintedFragment> fragments;
     vismap::VisibilityMap map = eng.algorithm == vismap::Algorithm::Newell
                                     ? vismap::visibility_newell(scene, view, eng, painter_path.empty() ? nullptr : &fragments)

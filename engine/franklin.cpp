@@ -41,8 +41,9 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   bucket_curves(grid, ss, st);
   st.time("edges_to_cells", clock.lap());
 
-  // 8. Intersect the edges pairwise within each cell.
-  auto cuts = cut_curves(grid, ss, st);
+  // 8. Intersect the edges pairwise within each cell (for a lines-only drawing:
+  // the pairs a drawn line's pieces depend on).
+  Cuts cuts = cut_curves(grid, ss, opt.regions, st);
   st.time("intersections", clock.lap());
 
   // 9, 11. Cut edges into pieces; each piece's visibility, and the nearest face on each side.
@@ -71,12 +72,13 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
     mp.push_back(MapPiece{p.a, p.b, &c.s, &c.t, p.left, p.right, p.visible, p.visible && c.drawn, c.kind, &c.faces,
                           c.order_face});
   }
-  assemble_map(mp, map);
+  if (opt.regions) assemble_map(mp, map);
+  else assemble_segments(mp, map);
 #endif
   unscale_map(map, ss.scale_exp);
   st.time("arrangement", clock.lap());
   st.count("visible_segments", static_cast<std::int64_t>(map.segments.size()));
-  st.count("regions", static_cast<std::int64_t>(map.regions.size()));
+  if (map.has_regions) st.count("regions", static_cast<std::int64_t>(map.regions.size()));
   // Exact work, to compare with the output's size: points the engine constructed
   // (intersection-line ends, crossings, piece midpoints), and the predicates the
   // interval filter could not settle (exact arithmetic decided them).

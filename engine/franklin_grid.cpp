@@ -676,9 +676,11 @@ struct Cutter {
     return CGAL::collinear_are_strictly_ordered_along_line(C.s.xy(), p, C.t.xy());
   }
 
-  void intersect(int ci, int di) {
+  // Cuts C and D where they cross or touch; true where they may meet (closed
+  // segments), false where they surely do not.
+  bool intersect(int ci, int di) {
     const Curve &C = ss.curves[ci], &D = ss.curves[di];
-    if (!CGAL::do_overlap(C.box, D.box)) return;
+    if (!CGAL::do_overlap(C.box, D.box)) return false;
     ++pairs;
     const P2 cs = C.s.xy(), ct = C.t.xy(), ds = D.s.xy(), dt = D.t.xy();
     // End points known to be the same vertex need no predicate.
@@ -691,29 +693,30 @@ struct Cutter {
       const bool ps = same(C.vs, D.vs) || same(C.vs, D.vt);
       const P2 p = ps ? cs : ct, a = ps ? ct : cs;
       const P2 b = (same(C.vs, D.vs) || same(C.vt, D.vs)) ? dt : ds;
-      if (CGAL::orientation(p, a, b) != CGAL::COLLINEAR || !CGAL::is_positive((a - p) * (b - p))) return;
+      if (CGAL::orientation(p, a, b) != CGAL::COLLINEAR || !CGAL::is_positive((a - p) * (b - p))) return true;
       overlaps.emplace_back(ci, di);
       if (strictly_within(C, b)) cut(ci, b);
       else if (strictly_within(D, a)) cut(di, a);
-      return;
+      return true;
     }
     auto o1 = CGAL::orientation(cs, ct, ds), o2 = CGAL::orientation(cs, ct, dt);
-    if (o1 != CGAL::COLLINEAR && o1 == o2) return;
-    if (o1 == CGAL::COLLINEAR && o2 == CGAL::COLLINEAR) { overlap(ci, di); return; }
+    if (o1 != CGAL::COLLINEAR && o1 == o2) return false;
+    if (o1 == CGAL::COLLINEAR && o2 == CGAL::COLLINEAR) { overlap(ci, di); return true; }
     auto o3 = CGAL::orientation(ds, dt, cs), o4 = CGAL::orientation(ds, dt, ct);
-    if (o3 != CGAL::COLLINEAR && o3 == o4) return;
+    if (o3 != CGAL::COLLINEAR && o3 == o4) return false;
     if (o1 * o2 < 0 && o3 * o4 < 0) {   // proper crossing
       const P2 p = crossing_point(cs, ct, ds, dt);
       ++crossings;
       cut(ci, p);
       cut(di, p);
-      return;
+      return true;
     }
     // T-junctions: an end point of one lies inside the other.
     if (o1 == CGAL::COLLINEAR && strictly_within(C, ds)) cut(ci, ds);
     if (o2 == CGAL::COLLINEAR && strictly_within(C, dt)) cut(ci, dt);
     if (o3 == CGAL::COLLINEAR && strictly_within(D, cs)) cut(di, cs);
     if (o4 == CGAL::COLLINEAR && strictly_within(D, ct)) cut(di, ct);
+    return true;
   }
 
   // A curve none of whose facets hides anything (they are all seen edge-on) gets
@@ -810,25 +813,61 @@ void share_overlap_cuts(const ScreenScene& ss, std::vector<std::pair<int, int>>&
 
 // Step 8: in each cell, every pair of curves; an intersection counts in the cell
 // holding it (half-open cells), so each is found once.
-std::vector<std::vector<P2>> cut_curves(Grid& g, const ScreenScene& ss, Stats& stats) {
-  std::vector<std::vector<P2>> cuts(ss.curves.size());
-  Cutter cutter{g, ss, cuts, 0, 0};
-  for (int iy = 0; iy < g.Y.cells(); ++iy)
-    for (int ix = 0; ix < g.X.cells(); ++ix) {
-      cutter.ix = ix;
-      cutter.iy = iy;
-      const Cell& cell = g.at(ix, iy);
+Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, Stats& stats) {
+  const std::size_t n = ss.curves.size();
+  Cuts cuts;
+  cuts.at.resize(n);
+  cuts.needed.assign(n, 1);
+  Cutter cutter{g, ss, cuts.at, 0, 0};
+  auto each_cell = [&](auto&& visit) {
+    for (int iy = 0; iy < g.Y.cells(); ++iy)
+      for (int ix = 0; ix < g.X.cells(); ++ix) {
+        cutter.ix = ix;
+        cutter.iy = iy;
+        visit(g.at(ix, iy));
+      }
+  };
+  // A curve none of whose facets hides anything is cut where it pierces one.
+  auto pierce = [&](const Cell& cell, int ci) {
+    const Curve& cv = ss.curves[ci];
+    if (std::any_of(cv.sharers.begin(), cv.sharers.end(), [&](int s) { return ss.facets[s].occluder; })) return;
+    for (int fi : cell.facets) cutter.pierce(ci, fi);
+    if (cell.blocker >= 0) cutter.pierce(ci, cell.blocker);
+  };
+  if (regions) {
+    each_cell([&](const Cell& cell) {
       const auto& cs = cell.curves;
       for (std::size_t i = 0; i < cs.size(); ++i)
         for (std::size_t j = i + 1; j < cs.size(); ++j) cutter.intersect(cs[i], cs[j]);
-      for (int ci : cs) {
-        const Curve& cv = ss.curves[ci];
-        if (std::any_of(cv.sharers.begin(), cv.sharers.end(), [&](int s) { return ss.facets[s].occluder; })) continue;
-        for (int fi : cell.facets) cutter.pierce(ci, fi);
-        if (cell.blocker >= 0) cutter.pierce(ci, cell.blocker);
-      }
-    }
-  share_overlap_cuts(ss, cutter.overlaps, cuts);
+      for (int ci : cs) pierce(cell, ci);
+    });
+  } else {
+    // The drawn lines alone (Franklin's step 8 iv-v): every pair with a drawn
+    // curve. A curve that is not drawn but meets a drawn one is needed too (a
+    // region boundary ending there splits the drawn line's segment; a nearer
+    // seam over it hides it): it is cut against every curve, as for the whole
+    // map, so that its pieces and their labels are the same. Pairs of other
+    // curves that are not drawn are never looked at.
+    std::vector<char> drawn(n);
+    for (std::size_t c = 0; c < n; ++c) drawn[c] = ss.curves[c].drawn;
+    cuts.needed = drawn;
+    each_cell([&](const Cell& cell) {
+      const auto& cs = cell.curves;
+      for (std::size_t i = 0; i < cs.size(); ++i)
+        for (std::size_t j = i + 1; j < cs.size(); ++j)
+          if ((drawn[cs[i]] || drawn[cs[j]]) && cutter.intersect(cs[i], cs[j])) cuts.needed[cs[i]] = cuts.needed[cs[j]] = 1;
+    });
+    each_cell([&](const Cell& cell) {
+      const auto& cs = cell.curves;
+      for (std::size_t i = 0; i < cs.size(); ++i)
+        for (std::size_t j = i + 1; j < cs.size(); ++j)
+          if (!drawn[cs[i]] && !drawn[cs[j]] && (cuts.needed[cs[i]] || cuts.needed[cs[j]])) cutter.intersect(cs[i], cs[j]);
+      for (int ci : cs)
+        if (cuts.needed[ci]) pierce(cell, ci);
+    });
+    stats.count("curves_needed", std::count(cuts.needed.begin(), cuts.needed.end(), 1));
+  }
+  share_overlap_cuts(ss, cutter.overlaps, cuts.at);
   stats.count("edge_pairs_tested", cutter.pairs);
   stats.count("intersections", cutter.crossings);
   stats.count("overlapping_curve_pairs", static_cast<std::int64_t>(cutter.overlaps.size()));
@@ -973,14 +1012,14 @@ bool before(const Facet& x, const Facet& y, Probe& m, bool left_side) {
 // Steps 9 and 11: cut each curve at its sorted cut points; decide each piece at its
 // midpoint against the facets of the midpoint's cell: is it visible, which faces are
 // nearest on each side, and does this curve bound a region there.
-std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss,
-                                          std::vector<std::vector<P2>>& cuts, Stats& stats) {
+std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss, Cuts& cuts, Stats& stats) {
   std::vector<VisiblePiece> out;
   std::vector<Cover> covers;
   std::int64_t pieces = 0, visible = 0;
   for (int ci = 0; ci < static_cast<int>(ss.curves.size()); ++ci) {
+    if (!cuts.needed[static_cast<std::size_t>(ci)]) continue;
     const Curve& cv = ss.curves[ci];
-    std::vector<P2>& pts = cuts[ci];
+    std::vector<P2>& pts = cuts.at[static_cast<std::size_t>(ci)];
     const P2 &s = cv.s.xy(), &t = cv.t.xy();
     // 9a: sort along the curve (the order of the dominant coordinate): |dx| >= |dy|,
     // decided on the end points' numbers (no lazy coordinate or difference built).

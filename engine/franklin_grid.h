@@ -54,9 +54,14 @@ void bucket_facets(Grid& g, ScreenScene& ss, Stats& stats);                     
 void prune_facets(Grid& g, const ScreenScene& ss, Stats& stats);                  // step 6
 void add_intersection_lines(Grid& g, ScreenScene& ss, Stats& stats);              // faces piercing each other
 void bucket_curves(Grid& g, const ScreenScene& ss, Stats& stats);                 // step 7
-std::vector<std::vector<P2>> cut_curves(Grid& g, const ScreenScene& ss, Stats& stats);   // step 8
-std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss,
-                                          std::vector<std::vector<P2>>& cuts, Stats& stats);  // steps 9, 11
+// Step 8's cut points per curve, and which curves the map needs (all of them,
+// unless only the drawn lines are wanted).
+struct Cuts {
+  std::vector<std::vector<P2>> at;
+  std::vector<char> needed;
+};
+Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, Stats& stats);        // step 8
+std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss, Cuts& cuts, Stats& stats);  // steps 9, 11
 
 VISMAP_KERNEL_END
 }  // namespace vismap::engine

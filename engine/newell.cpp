@@ -49,7 +49,9 @@ VisibilityMap visibility_newell(const Scene& scene, const View& view, const Engi
   unscale_map(map, ss.scale_exp);
   st.time("arrangement", clock.lap());
   st.count("visible_segments", static_cast<std::int64_t>(map.segments.size()));
-  st.count("regions", static_cast<std::int64_t>(map.regions.size()));
+  // (Newell's overlay needs the whole map; a lines-only map just leaves out its regions.)
+  if (opt.regions) st.count("regions", static_cast<std::int64_t>(map.regions.size()));
+  else { map.regions.clear(); map.has_regions = false; }
   st.count("predicates", exact::filter_counts.calls - filter_before.calls);
   st.count("predicates_exact", exact::filter_counts.exact - filter_before.exact);
 

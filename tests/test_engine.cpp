@@ -33,6 +33,12 @@ std::string map_json(const vismap::Scene& scene, const vismap::View& view, const
   return vismap::to_json(map);
 }
 
+// The "segments" list of a map's JSON text (up to the free-form stats).
+std::string segments_of(const std::string& json) {
+  const auto from = json.find("\"segments\""), to = json.find("\"stats\"");
+  return from == std::string::npos ? "" : json.substr(from, to - from);
+}
+
 // ---- the degenerate corpus, end to end ----------------------------------------
 
 std::vector<Case> corpus() {
@@ -56,6 +62,19 @@ TEST_P(Corpus, CheckerAcceptsTheMapAndRunsAreReproducible) {
   }
   const std::string json = slurp(out1);
   EXPECT_EQ(json, slurp(out2)) << "two runs differ";
+  // The lines alone (--no-regions; a lines-only SVG): the same segments, byte for
+  // byte, computed without the regions; the SVG as drawn from the whole map.
+  const fs::path lines = dir / (c.file + ".lines.json"), svg_whole = dir / (c.file + ".whole.svg"),
+                 svg_lines = dir / (c.file + ".lines.svg");
+  for (const std::string& extra : {" --no-regions --json '" + lines.string() + "'",
+                                   " --lines-only -o '" + svg_lines.string() + "'",
+                                   " --lines-only -o '" + svg_whole.string() + "' --json '" + out2.string() + "'"}) {
+    std::string cmd = std::string(VISMAP_BIN) + " '" + scene.string() + "' " + c.args + extra;
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  }
+  EXPECT_EQ(segments_of(slurp(lines)), segments_of(json)) << "--no-regions changed the segments";
+  EXPECT_EQ(slurp(lines).find("\"regions\""), std::string::npos) << "--no-regions wrote regions";
+  EXPECT_EQ(slurp(svg_lines), slurp(svg_whole)) << "a lines-only drawing differs from the whole map's";
   vismap_check::Options opt;
   opt.smooth = c.args.find("--smooth") != std::string::npos;
   if (auto k = c.args.find("--crease "); k != std::string::npos) opt.crease_deg = std::stod(c.args.substr(k + 9));
@@ -112,7 +131,12 @@ TEST_P(Random, CheckerAcceptsTheMap) {
   vismap_check::Options opt;
   opt.samples = 1500;
   opt.seed = seed;
-  expect_checked(scene, map_json(scene, view, {}), opt, rc.name + " seed " + std::to_string(seed));
+  const std::string json = map_json(scene, view, {});
+  expect_checked(scene, json, opt, rc.name + " seed " + std::to_string(seed));
+  vismap::EngineOptions lines_only;
+  lines_only.regions = false;
+  EXPECT_EQ(segments_of(map_json(scene, view, lines_only)), segments_of(json))
+      << rc.name + " seed " + std::to_string(seed) << ": the lines alone differ from the whole map's";
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, Random,
