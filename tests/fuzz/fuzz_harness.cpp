@@ -179,6 +179,22 @@ void check_pipeline(const std::uint8_t* data, std::size_t size, Engines engines)
       die(why + repro + (strict ? "(with --strict)\n" : ""));
     }
     maps.emplace_back(engine, json);
+    // The lines alone (--no-regions): Franklin computes less, and must write the same segments.
+    if (!newell) {
+      vismap::EngineOptions lines_only = t.options;
+      lines_only.regions = false;
+      std::string lines;
+      try {
+        vismap::VisibilityMap map = vismap::visibility_franklin(t.scene, view, lines_only);
+        map.stats = {};
+        lines = vismap::to_json(map);
+      } catch (const std::exception& e) {
+        die(std::string("the franklin engine threw with --no-regions: ") + e.what() + repro);
+      }
+      auto segments = [](const std::string& j) { return j.substr(j.find("\"segments\"")); };
+      if (segments(lines) != segments(json))
+        die("--no-regions changed the segments" + repro + "(compare with --no-regions)\n");
+    }
   }
   if (maps.size() == 2 && maps[0].second != maps[1].second)
     die("the two engines' maps differ (both accepted by the checker)\n--- scene (fuzz.off) ---\n" + to_off(t.scene) +
