@@ -3,6 +3,7 @@ computation of the visible feature lines of an OFF mesh in vismap's view.
 
     blender -b --factory-startup -t N --python bench/lineart_blender.py -- \\
         SCENE.off (--dir X,Y,Z | --eye X,Y,Z [--target X,Y,Z] [--fov DEG]) OUT.json [--reps 3]
+        [--crease DEG]
 
 What it does (Blender 3.x; checked with Debian's 3.4.1):
   * reads the OFF mesh itself (Blender 3.4 has no OFF importer) into one mesh object
@@ -13,8 +14,11 @@ What it does (Blender 3.x; checked with Debian's 3.4.1):
     centre) with that vertical field of view (default 40), square frame;
   * a Grease Pencil object with a Line Art modifier on the whole scene collection, with
     crease threshold 180 degrees (every edge between two non-coplanar faces is a crease:
-    vismap's --crease 0), contours, borders/loose edges and intersections on, no chaining
-    across gaps (chaining_image_threshold 0), no smoothing, no stroke depth offset;
+    vismap's --crease 0), or 180 - DEG with --crease DEG (Line Art makes an edge a crease
+    where its faces' normals have n1.n2 < cos(180 degrees - threshold), i.e. turn by more
+    than DEG: vismap's --crease DEG), contours, borders/loose edges and intersections on,
+    no chaining across gaps (chaining_image_threshold 0), no smoothing, no stroke depth
+    offset;
   * times the Line Art evaluation only: the scene is first evaluated with the modifier
     off (mesh, camera: everything but Line Art), then the modifier is switched on and the
     depsgraph update that runs it is timed (time.perf_counter, wall; time.process_time,
@@ -52,7 +56,7 @@ def parse_args():
     for k, a in enumerate(argv[:argv.index("--")]):
         if a in ("-t", "--threads") and k + 1 < len(argv):
             threads = int(argv[k + 1])
-    opts = {"dir": None, "eye": None, "target": None, "fov": None, "reps": 3}
+    opts = {"dir": None, "eye": None, "target": None, "fov": None, "reps": 3, "crease": 0.0}
     pos = []
     k = 0
     while k < len(args):
@@ -69,9 +73,10 @@ def parse_args():
         elif a == "--reps":
             opts["reps"] = int(args[k + 1])
             k += 2
-        elif a == "--crease":   # accepted for symmetry with vismap; only 0 is meant
-            if float(args[k + 1]) != 0:
-                die("only --crease 0 is supported")
+        elif a == "--crease":   # vismap's crease angle: Line Art's threshold is 180 - DEG
+            opts["crease"] = float(args[k + 1])
+            if not 0 <= opts["crease"] <= 180:
+                die("--crease must be between 0 and 180 degrees")
             k += 2
         else:
             pos.append(a)
@@ -209,7 +214,8 @@ def main():
     mod.target_layer = "lines"
     mod.target_material = mat
     settings = {
-        "crease_threshold": math.pi,        # every edge between non-coplanar faces is a crease
+        # every edge between non-coplanar faces is a crease (--crease 0); 180 - DEG for --crease DEG
+        "crease_threshold": math.pi - math.radians(opts["crease"]),
         "use_crease": True,
         "use_crease_on_smooth": True,
         "use_crease_on_sharp": True,
@@ -293,6 +299,7 @@ def main():
         "scene": os.path.basename(scene_path),
         "faces": len(faces),
         "view": {k: opts[k] for k in ("dir", "eye", "target", "fov") if opts[k] is not None},
+        "crease": opts["crease"],
         "threads": threads,
         "blender": bpy.app.version_string,
         "seconds": seconds,
