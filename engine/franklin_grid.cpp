@@ -475,6 +475,18 @@ bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3
 
 }  // namespace
 
+// Facets with an edge in common (by identity) meet only along it, or lie in one
+// plane: they never pierce each other. (The commonest pair on a mesh, told
+// without arithmetic.)
+bool share_an_edge(const Facet& A, const Facet& B) {
+  const std::size_t n = A.id.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const long p = A.id[k], q = A.id[(k + 1) % n];
+    if (p >= 0 && q >= 0 && B.has_vertex(p) && B.has_vertex(q) && common_edge(A, B, p, q)) return true;
+  }
+  return false;
+}
+
 // Faces that pierce each other: an intersection line for every pair of facets of
 // different faces that share a cell and cross inside both projections.
 void add_intersection_lines(Grid& g, ScreenScene& ss, Stats& stats) {
@@ -495,6 +507,7 @@ void add_intersection_lines(Grid& g, ScreenScene& ss, Stats& stats) {
       if (A.face == B.face || !CGAL::do_overlap(A.box, B.box)) return;
       // Depth ranges apart: no point of one is at the other's depth.
       if (A.zhi < B.zlo || B.zhi < A.zlo) return;
+      if (share_an_edge(A, B)) return;
       partners.push_back(fb);
     };
     const CellRange r = range_of(g, A.box);
@@ -519,17 +532,23 @@ void add_intersection_lines(Grid& g, ScreenScene& ss, Stats& stats) {
   stats.count("intersection_lines", found);
 }
 
-// Step 7: each curve goes to the cells it passes through, unless it lies wholly
-// behind the cell's blocker (7a-i); a curve listed nowhere is hidden (7b).
-void bucket_curves(Grid& g, const ScreenScene& ss, Stats& stats) {
-  std::int64_t hidden = 0, listed = 0;
+namespace {
+
+// Step 7 for the curves `take` admits, into the cells `into` admits: each goes
+// to the cells it passes through, unless it lies wholly behind the cell's
+// blocker (7a-i). Returns how many it listed nowhere (hidden: 7b).
+template <class Take, class Into>
+std::int64_t bucket(Grid& g, const ScreenScene& ss, Take&& take, Into&& into, std::int64_t& listed) {
+  std::int64_t hidden = 0;
   UpwardRounding upward;   // meets_cell, curve_behind: our own filtered predicates
   for (int ci = 0; ci < static_cast<int>(ss.curves.size()); ++ci) {
+    if (!take(ci)) continue;
     const Curve& cv = ss.curves[ci];
     CellRange r = range_of(g, cv.box);
     bool kept = false;
     for (int iy = r.y0; iy <= r.y1; ++iy)
       for (int ix = r.x0; ix <= r.x1; ++ix) {
+        if (!into(ix, iy)) continue;
         Cell& cell = g.at(ix, iy);
         // (A cell the double box reaches only by rounding may be kept: harmless,
         // cut points count only in the cell that holds them.)
@@ -540,6 +559,26 @@ void bucket_curves(Grid& g, const ScreenScene& ss, Stats& stats) {
         ++listed;
       }
     hidden += !kept;
+  }
+  return hidden;
+}
+
+}  // namespace
+
+// Step 7: each curve goes to the cells it passes through, unless it lies wholly
+// behind the cell's blocker (7a-i); a curve listed nowhere is hidden (7b). For
+// the drawn lines alone: the drawn curves everywhere, the others only into cells
+// where a drawn one is (where they could meet it; cut_curves adds the rest it needs).
+void bucket_curves(Grid& g, const ScreenScene& ss, bool regions, Stats& stats) {
+  std::int64_t listed = 0;
+  auto everywhere = [](int, int) { return true; };
+  std::int64_t hidden = 0;
+  if (regions) {
+    hidden = bucket(g, ss, [](int) { return true; }, everywhere, listed);
+  } else {
+    hidden = bucket(g, ss, [&](int ci) { return ss.curves[ci].drawn; }, everywhere, listed);
+    bucket(g, ss, [&](int ci) { return !ss.curves[ci].drawn; }, [&](int ix, int iy) { return !g.at(ix, iy).curves.empty(); },
+           listed);
   }
   stats.count("curve_cells", listed);
   stats.count("edges_culled_behind_blocking_face", hidden);
@@ -857,6 +896,17 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, Stats& stats) {
         for (std::size_t j = i + 1; j < cs.size(); ++j)
           if ((drawn[cs[i]] || drawn[cs[j]]) && cutter.intersect(cs[i], cs[j])) cuts.needed[cs[i]] = cuts.needed[cs[j]] = 1;
     });
+    // bucket_curves listed the curves that are not drawn only where a drawn one
+    // is (hot cells). The needed ones go to their other cells too, and every
+    // curve that is not drawn to those cells, for the second pass.
+    std::vector<char> hot(g.cells.size());
+    for (std::size_t k = 0; k < g.cells.size(); ++k) hot[k] = !g.cells[k].curves.empty();
+    auto at = [&](int ix, int iy) { return static_cast<std::size_t>(iy) * g.X.cells() + ix; };
+    std::int64_t listed = 0;
+    bucket(g, ss, [&](int ci) { return !drawn[ci] && cuts.needed[ci]; }, [&](int ix, int iy) { return !hot[at(ix, iy)]; },
+           listed);
+    bucket(g, ss, [&](int ci) { return !drawn[ci] && !cuts.needed[ci]; },
+           [&](int ix, int iy) { return !hot[at(ix, iy)] && !g.at(ix, iy).curves.empty(); }, listed);
     each_cell([&](const Cell& cell) {
       const auto& cs = cell.curves;
       for (std::size_t i = 0; i < cs.size(); ++i)
