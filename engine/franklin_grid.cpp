@@ -252,7 +252,7 @@ std::vector<double> end_coordinates(const ScreenScene& ss, bool x, std::size_t w
 
 Axis::Axis(std::vector<double> bounds) : bounds_(std::move(bounds)) {
   const double lo = bounds_.front(), hi = bounds_.back();
-  const int bins = 4 * cells();
+  const int bins = 16 * cells();
   lo_ = lo;
   bins_per_unit_ = hi > lo ? bins / (hi - lo) : 0;
   if (!std::isfinite(bins_per_unit_)) bins_per_unit_ = 0;
