@@ -49,6 +49,10 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
 
   // 9, 11. Cut edges into pieces; each piece's visibility, and the nearest face on each side.
   std::vector<VisiblePiece> pieces = classify_pieces(grid, ss, cuts, st);
+  // The grid and the cut points have served: freed before the map is built, whose
+  // graph is then the largest thing alive (10^6 faces: hundreds of MB less at the peak).
+  grid = Grid();
+  cuts = Cuts();
   st.time("visibility", clock.lap());
 
   // 10. The planar arrangement of the visible pieces, its regions labelled.
@@ -73,6 +77,9 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
     mp.push_back(MapPiece{p.a, p.b, &c.s, &c.t, p.left, p.right, p.visible, p.visible && c.drawn, c.kind, &c.faces,
                           c.order_face});
   }
+  // The map needs the curves alone from here: the pieces and facets are freed.
+  std::vector<VisiblePiece>().swap(pieces);
+  std::vector<Facet>().swap(ss.facets);
   if (opt.regions) assemble_map(mp, map);
   else assemble_segments(mp, map);
 #endif
