@@ -168,17 +168,19 @@ void AtomicFile::commit() {
   slot_ = -1;
 }
 
-void write_files_atomically(const std::vector<std::pair<std::string, std::string>>& files) {
+void write_outputs_atomically(const std::vector<StreamedOutput>& outputs) {
   std::vector<std::unique_ptr<AtomicFile>> pending;
-  std::vector<const std::string*> to_stdout;
-  for (const auto& [path, contents] : files) {
-    if (path == "-") {
-      to_stdout.push_back(&contents);
+  std::vector<std::string> to_stdout;
+  for (const StreamedOutput& o : outputs) {
+    if (o.path == "-") {
+      std::string& all = to_stdout.emplace_back();
+      o.render([&](const std::string& piece) { all += piece; });
       continue;
     }
-    pending.push_back(std::make_unique<AtomicFile>(path));
-    pending.back()->write(contents);
-    pending.back()->finish();
+    pending.push_back(std::make_unique<AtomicFile>(o.path));
+    AtomicFile& f = *pending.back();
+    o.render([&](const std::string& piece) { f.write(piece); });
+    f.finish();
   }
   {
     // All renamed or none: a signal between two renames would leave a new file
@@ -186,10 +188,17 @@ void write_files_atomically(const std::vector<std::pair<std::string, std::string
     BlockSignals block;
     for (auto& f : pending) f->commit();
   }
-  for (const std::string* contents : to_stdout) {
-    if (std::fwrite(contents->data(), 1, contents->size(), stdout) != contents->size() || std::fflush(stdout) != 0)
+  for (const std::string& contents : to_stdout) {
+    if (std::fwrite(contents.data(), 1, contents.size(), stdout) != contents.size() || std::fflush(stdout) != 0)
       throw std::runtime_error(std::string("-: cannot write to standard output: ") + std::strerror(errno));
   }
+}
+
+void write_files_atomically(const std::vector<std::pair<std::string, std::string>>& files) {
+  std::vector<StreamedOutput> outputs;
+  for (const auto& [path, contents] : files)
+    outputs.push_back({path, [&contents = contents](const auto& write) { write(contents); }});
+  write_outputs_atomically(outputs);
 }
 
 void write_file_atomically(const std::string& path, const std::string& contents) {

@@ -4,6 +4,7 @@
 // SIGTERM, SIGHUP or SIGQUIT during the run, leaves the old files as they were
 // and no temporary behind. "-" means standard output.
 #pragma once
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -21,6 +22,16 @@ void write_files_atomically(const std::vector<std::pair<std::string, std::string
 
 // One file.
 void write_file_atomically(const std::string& path, const std::string& contents);
+
+// An output whose bytes are produced in pieces: render(write) calls write on
+// each piece in order (a GB of JSON need not be held whole).
+struct StreamedOutput {
+  std::string path;
+  std::function<void(const std::function<void(const std::string&)>& write)> render;
+};
+// As write_files_atomically: every temporary written whole first, then all renamed;
+// standard output ("-") gets its bytes last, once every file is in place.
+void write_outputs_atomically(const std::vector<StreamedOutput>& outputs);
 
 // A temporary being written, for tests and callers that stream: created next
 // to `path`, removed on destruction unless commit() renamed it over `path`.

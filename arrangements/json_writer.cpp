@@ -42,7 +42,19 @@ void ring(std::string& out, const Ring& r, const std::vector<std::string>& text)
 }  // namespace
 
 std::string to_json(const VisibilityMap& map) {
+  std::string all;
+  write_json(map, [&](const std::string& piece) { all += piece; });
+  return all;
+}
+
+void write_json(const VisibilityMap& map, const std::function<void(const std::string&)>& sink) {
   std::string out;
+  constexpr std::size_t kPiece = std::size_t{4} << 20;
+  auto pass_on = [&] {   // hands over what has piled up, if it is a whole piece
+    if (out.size() < kPiece) return;
+    sink(out);
+    out.clear();
+  };
   out += "{\"format\":\"vismap\",\"version\":1,\n\"scene\":{\"file\":";
   quoted(out, map.scene_file);
   out += ",\"faces\":" + std::to_string(map.scene_faces) + "},\n";
@@ -59,17 +71,7 @@ std::string to_json(const VisibilityMap& map) {
   // Each vertex's text once: most appear in several rings and segments.
   std::vector<std::string> text(map.vertices.size());
   for (std::size_t v = 0; v < map.vertices.size(); ++v) point(text[v], map.vertices[v]);
-  // The whole text's size, nearly: one allocation instead of a doubling string
-  // copied over and over (a map's JSON runs to tens of MB).
-  std::size_t size = out.size() + 4096;
-  for (const Region& g : map.regions) {
-    size += 40;
-    for (auto v : g.outer) size += text[v].size() + 1;
-    for (const Ring& h : g.holes)
-      for (auto v : h) size += text[v].size() + 1;
-  }
-  for (const Segment& sg : map.segments) size += text[sg.from].size() + text[sg.to].size() + 60 + 12 * sg.faces.size();
-  out.reserve(size);
+  out.reserve(2 * kPiece);
   out += "],\n";
   if (map.has_regions) out += "\"regions\":[";
   for (std::size_t i = 0; i < map.regions.size() && map.has_regions; ++i) {
@@ -83,6 +85,7 @@ std::string to_json(const VisibilityMap& map) {
       ring(out, g.holes[h], text);
     }
     out += "]}";
+    pass_on();
   }
   if (map.has_regions) out += "],\n";
   out += "\"segments\":[";
@@ -101,6 +104,7 @@ std::string to_json(const VisibilityMap& map) {
       out += std::to_string(s.faces[k]);
     }
     out += "]}";
+    pass_on();
   }
   out += "],\n\"stats\":{\"seconds\":{";
   char buf[64];
@@ -117,7 +121,7 @@ std::string to_json(const VisibilityMap& map) {
     out += ':' + std::to_string(map.stats.counts[i].second);
   }
   out += "}}}\n";
-  return out;
+  sink(out);
 }
 
 }  // namespace vismap

@@ -183,14 +183,15 @@ int main(int argc, char** argv) {
     } else {
       map.stats.seconds.clear();   // keep the JSON reproducible
     }
-    // Render everything first, then write: a failure leaves no half-written output.
-    std::string json = json_path.empty() ? "" : vismap::to_json(map);
-    std::string drawing = svg_path.empty() ? "" : vismap::to_svg(map, scene, view, svg);
-    std::vector<std::pair<std::string, std::string>> outputs;
-    if (!json_path.empty()) outputs.emplace_back(json_path, std::move(json));
-    if (!svg_path.empty()) outputs.emplace_back(svg_path, std::move(drawing));
-    if (!painter_path.empty()) outputs.emplace_back(painter_path, vismap::to_painter_svg(fragments, map, scene, view, svg));
-    vismap::write_files_atomically(outputs);   // all or none
+    // Each output into its temporary (the JSON streamed in pieces: a 10^6-face
+    // map's is about a GB), then all renamed together: a failure leaves no
+    // half-written output.
+    std::vector<vismap::StreamedOutput> outputs;
+    if (!json_path.empty()) outputs.push_back({json_path, [&](const auto& write) { vismap::write_json(map, write); }});
+    if (!svg_path.empty()) outputs.push_back({svg_path, [&](const auto& write) { write(vismap::to_svg(map, scene, view, svg)); }});
+    if (!painter_path.empty())
+      outputs.push_back({painter_path, [&](const auto& write) { write(vismap::to_painter_svg(fragments, map, scene, view, svg)); }});
+    vismap::write_outputs_atomically(outputs);   // all or none
     if (json_path.empty() && svg_path.empty() && painter_path.empty())
       std::fprintf(stderr, "vismap: %s: %zu regions, %zu segments (no output asked for: use -o or --json)\n",
                    scene_path.c_str(), map.regions.size(), map.segments.size());

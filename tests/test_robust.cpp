@@ -4,6 +4,7 @@
 // memory limit are refused up front; standard input works; outputs are atomic
 // (a failed, killed or interrupted run leaves the old file and no temporary).
 #include <gtest/gtest.h>
+
 #include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -338,6 +340,29 @@ TEST(Atomic, AFailedRunLeavesTheOldFilesAndNoTemporary) {
 }
 
 // A process killed while its temporary exists removes it, and leaves the old file.
+// Streamed outputs (the JSON of a large map comes in pieces): written whole, in
+// order; a render that fails midway leaves the old files and no temporary.
+TEST(Atomic, StreamedOutputsAreWholeOrAbsent) {
+  TempDir out("atomic_stream");
+  const std::string a = out.write("a.json", "old a"), b = out.write("b.svg", "old b");
+  auto pieces = [](int n) {
+    return [n](const std::function<void(const std::string&)>& write) {
+      for (int i = 0; i < n; ++i) write(std::to_string(i) + ",");
+    };
+  };
+  vismap::write_outputs_atomically({{a, pieces(3)}, {b, pieces(2)}});
+  EXPECT_EQ(vismap_test::slurp(a), "0,1,2,");
+  EXPECT_EQ(vismap_test::slurp(b), "0,1,");
+  auto failing = [](const std::function<void(const std::string&)>& write) {
+    write("half");
+    throw std::runtime_error("render failed");
+  };
+  EXPECT_THROW(vismap::write_outputs_atomically({{a, pieces(5)}, {b, failing}}), std::runtime_error);
+  EXPECT_EQ(vismap_test::slurp(a), "0,1,2,");
+  EXPECT_EQ(vismap_test::slurp(b), "0,1,");
+  EXPECT_EQ(out.names(), (std::vector<std::string>{"a.json", "b.svg"}));
+}
+
 TEST(Atomic, ASignalDuringTheWriteRemovesTheTemporary) {
   for (int sig : {SIGTERM, SIGINT, SIGHUP}) {
     TempDir out("atomic_signal");
