@@ -391,18 +391,18 @@ void prune_facets(Grid& g, const ScreenScene& ss, Stats& stats) {
 
 namespace {
 
-// Whether canonical vertices u and v are the ends of an edge of both facets.
-bool common_edge(const Facet& A, const Facet& B, long u, long v) {
-  auto edge_of = [&](const Facet& F) {
-    const std::size_t n = F.id.size();
-    for (std::size_t k = 0; k < n; ++k) {
-      const long p = F.id[k], q = F.id[(k + 1) % n];
-      if ((p == u && q == v) || (p == v && q == u)) return true;
-    }
-    return false;
-  };
-  return edge_of(A) && edge_of(B);
+// Whether canonical vertices u and v are the ends of an edge of facet F.
+bool has_edge(const Facet& F, long u, long v) {
+  const std::size_t n = F.id.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const long p = F.id[k], q = F.id[(k + 1) % n];
+    if ((p == u && q == v) || (p == v && q == u)) return true;
+  }
+  return false;
 }
+
+// Whether canonical vertices u and v are the ends of an edge of both facets.
+bool common_edge(const Facet& A, const Facet& B, long u, long v) { return has_edge(A, u, v) && has_edge(B, u, v); }
 
 // Where facets A and B cross in 3D strictly inside both projections, as a screen
 // segment; false when they do not, or only along an edge of either.
@@ -481,8 +481,8 @@ bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3
 bool share_an_edge(const Facet& A, const Facet& B) {
   const std::size_t n = A.id.size();
   for (std::size_t k = 0; k < n; ++k) {
-    const long p = A.id[k], q = A.id[(k + 1) % n];
-    if (p >= 0 && q >= 0 && B.has_vertex(p) && B.has_vertex(q) && common_edge(A, B, p, q)) return true;
+    const long p = A.id[k], q = A.id[(k + 1) % n];   // (an edge of A)
+    if (p >= 0 && q >= 0 && has_edge(B, p, q)) return true;
   }
   return false;
 }
@@ -563,6 +563,20 @@ std::int64_t bucket(Grid& g, const ScreenScene& ss, Take&& take, Into&& into, st
   return hidden;
 }
 
+// For the drawn lines alone, after the first cutting pass: bucket_curves listed
+// the curves that are not drawn only where a drawn one is (hot cells). Those now
+// needed go to their other cells too, and every curve that is not drawn to those
+// cells, for the second pass.
+void bucket_needed_curves(Grid& g, const ScreenScene& ss, const std::vector<char>& needed) {
+  std::vector<char> hot(g.cells.size());
+  for (std::size_t k = 0; k < g.cells.size(); ++k) hot[k] = !g.cells[k].curves.empty();
+  auto cold = [&](int ix, int iy) { return !hot[static_cast<std::size_t>(iy) * g.X.cells() + ix]; };
+  std::int64_t listed = 0;
+  bucket(g, ss, [&](int ci) { return !ss.curves[ci].drawn && needed[ci]; }, cold, listed);
+  bucket(g, ss, [&](int ci) { return !ss.curves[ci].drawn && !needed[ci]; },
+         [&](int ix, int iy) { return cold(ix, iy) && !g.at(ix, iy).curves.empty(); }, listed);
+}
+
 }  // namespace
 
 // Step 7: each curve goes to the cells it passes through, unless it lies wholly
@@ -570,9 +584,8 @@ std::int64_t bucket(Grid& g, const ScreenScene& ss, Take&& take, Into&& into, st
 // the drawn lines alone: the drawn curves everywhere, the others only into cells
 // where a drawn one is (where they could meet it; cut_curves adds the rest it needs).
 void bucket_curves(Grid& g, const ScreenScene& ss, bool regions, Stats& stats) {
-  std::int64_t listed = 0;
+  std::int64_t listed = 0, hidden = 0;
   auto everywhere = [](int, int) { return true; };
-  std::int64_t hidden = 0;
   if (regions) {
     hidden = bucket(g, ss, [](int) { return true; }, everywhere, listed);
   } else {
@@ -896,17 +909,7 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, Stats& stats) {
         for (std::size_t j = i + 1; j < cs.size(); ++j)
           if ((drawn[cs[i]] || drawn[cs[j]]) && cutter.intersect(cs[i], cs[j])) cuts.needed[cs[i]] = cuts.needed[cs[j]] = 1;
     });
-    // bucket_curves listed the curves that are not drawn only where a drawn one
-    // is (hot cells). The needed ones go to their other cells too, and every
-    // curve that is not drawn to those cells, for the second pass.
-    std::vector<char> hot(g.cells.size());
-    for (std::size_t k = 0; k < g.cells.size(); ++k) hot[k] = !g.cells[k].curves.empty();
-    auto at = [&](int ix, int iy) { return static_cast<std::size_t>(iy) * g.X.cells() + ix; };
-    std::int64_t listed = 0;
-    bucket(g, ss, [&](int ci) { return !drawn[ci] && cuts.needed[ci]; }, [&](int ix, int iy) { return !hot[at(ix, iy)]; },
-           listed);
-    bucket(g, ss, [&](int ci) { return !drawn[ci] && !cuts.needed[ci]; },
-           [&](int ix, int iy) { return !hot[at(ix, iy)] && !g.at(ix, iy).curves.empty(); }, listed);
+    bucket_needed_curves(g, ss, cuts.needed);
     each_cell([&](const Cell& cell) {
       const auto& cs = cell.curves;
       for (std::size_t i = 0; i < cs.size(); ++i)
