@@ -44,6 +44,8 @@ engine:
   --algorithm A        franklin (default: Franklin's variable grid) or newell
                        (Newell, Newell & Sancha's depth sort with plane
                        splitting); both give the same map
+  --threads N          threads for Franklin's engine (default: every core); the
+                       map is the same for every N
   --grid-c C           Franklin's grid constant c, B = c*min(sqrt(N),1/L) (default 4)
   --painter FILE       with --algorithm newell: SVG of the ordered, split
                        fragments filled back to front (the painter's drawing)
@@ -130,6 +132,11 @@ int main(int argc, char** argv) {
       } else if (a == "--grid-c") {
         eng.grid_c = parse_double(a, value());
         if (!(eng.grid_c > 0 && eng.grid_c <= 64)) throw Usage("--grid-c must be in (0, 64]");
+      } else if (a == "--threads") {
+        const std::string& v = value();
+        const double n = parse_double(a, v);
+        if (!(n >= 1 && n <= 1024 && n == std::floor(n))) throw Usage("--threads expects a whole number from 1 to 1024, got '" + v + "'");
+        eng.threads = static_cast<int>(n);
       } else if (a == "--smooth") eng.smooth = true;
       else if (a == "--stats") stats = true;
       else if (a == "--format") {

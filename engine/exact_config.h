@@ -2,9 +2,11 @@
 // every translation unit of vismap_core and its users, so every unit that
 // instantiates CGAL sees the same settings.
 //
-// 1. Single-threaded: the engine runs in one thread, so CGAL's lazy numbers need no
-//    std::call_once per exact evaluation (a pthread_once and a futex system call
-//    each time: 5-8% of the run time on random squares).
+// 1. Thread-safe (CGAL_HAS_THREADS, CGAL's default): Franklin's engine runs loops
+//    on several threads (engine/parallel.h) over lazy numbers they share. The
+//    price on one thread: a std::call_once per exact evaluation (2-7% of the run
+//    time). Reference counts stay plain increments while the process has one
+//    thread (glibc's __libc_single_threaded), so --threads 1 pays no more.
 //
 // 2. How often the exact kernel's floating-point filter could not settle a question.
 // CGAL reports each filtered predicate (and each lazy comparison) through its
@@ -17,7 +19,6 @@
 // nothing else does.)
 #pragma once
 #define VISMAP_EXACT_CONFIG_H
-#define CGAL_HAS_NO_THREADS
 #include <CGAL/Profile_counter.h>
 
 #include <cstdint>
@@ -29,7 +30,7 @@ struct FilterCounts {
   std::int64_t calls = 0;   // filtered predicates and comparisons run
   std::int64_t exact = 0;   // of those, decided by exact arithmetic
 };
-inline FilterCounts filter_counts;   // the engine is single-threaded
+inline thread_local FilterCounts filter_counts;   // per thread; parallel_for sums them
 
 constexpr bool in_static_filter(std::string_view file) { return file.find("Static_filters") != file.npos; }
 

@@ -6,6 +6,7 @@
 #include "engine/franklin_grid.h"
 #include "engine/screen_scene.h"
 #include "engine/engine_run.h"
+#include "engine/parallel.h"
 #include "engine/visibility.h"
 
 namespace vismap {
@@ -21,6 +22,7 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   Stats& st = map.stats;
   const exact::FilterCounts filter_before = exact::filter_counts;
   PhaseClock clock;
+  const int threads = thread_count(opt.threads);
 
   // 1. Project the scene exactly; skip what cannot be seen (outside, edge-on, back faces).
   ScreenScene ss = make_screen_scene(scene, view, opt, st);
@@ -44,11 +46,11 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
 
   // 8. Intersect the edges pairwise within each cell (for a lines-only drawing:
   // the pairs a drawn line's pieces depend on).
-  Cuts cuts = cut_curves(grid, ss, opt.regions, st);
+  Cuts cuts = cut_curves(grid, ss, opt.regions, threads, st);
   st.time("intersections", clock.lap());
 
   // 9, 11. Cut edges into pieces; each piece's visibility, and the nearest face on each side.
-  std::vector<VisiblePiece> pieces = classify_pieces(grid, ss, cuts, st);
+  std::vector<VisiblePiece> pieces = classify_pieces(grid, ss, cuts, threads, st);
   // The grid and the cut points have served: freed before the map is built, whose
   // graph is then the largest thing alive (10^6 faces: hundreds of MB less at the peak).
   grid = Grid();

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <type_traits>
 
 #include "engine/convex_inside.h"
+#include "engine/parallel.h"
 #include "engine/union_find.h"
 #include "engine/world_exact.h"
 
@@ -451,7 +453,7 @@ bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3
   for (const Facet* F : {&A, &B}) {
     const std::size_t n = F->v.size();
     for (std::size_t k = 0; k < n; ++k) {
-      P2 e0 = F->v[k].xy(), e1 = F->v[(k + 1) % n].xy();
+      const P2 &e0 = F->v[k].xy(), &e1 = F->v[(k + 1) % n].xy();
       V2 e = e1 - e0;
       const bool through_p0 = shared >= 0 && (F->id[k] == shared || F->id[(k + 1) % n] == shared);
       FT alpha = through_p0 ? FT(0) : e.x() * (p0.y() - e0.y()) - e.y() * (p0.x() - e0.x());
@@ -712,16 +714,23 @@ P2 crossing_point(const P2& a, const P2& b, const P2& c, const P2& d) {
 #endif
 }
 
-struct Cutter {
-  Grid& g;
-  const ScreenScene& ss;
-  std::vector<std::vector<P2>>& cuts;
-  int ix, iy;
-  std::int64_t pairs = 0, crossings = 0;
+// What cutting one row of cells finds, in the order the cells and pairs were
+// looked at: the rows are cut in parallel and joined in row order.
+struct RowCuts {
+  std::vector<std::pair<int, P2>> at;          // (curve, cut point)
   std::vector<std::pair<int, int>> overlaps;   // collinear curves sharing more than a point
+  std::vector<int> met;                        // (lines only) curves found to meet a drawn one
+  std::int64_t pairs = 0, crossings = 0;
+};
+
+struct Cutter {
+  const Grid& g;
+  const ScreenScene& ss;
+  RowCuts& row;
+  int ix, iy;
 
   void cut(int c, const P2& p) {
-    if (in_cell(g, ix, iy, p)) cuts[c].push_back(p);
+    if (in_cell(g, ix, iy, p)) row.at.emplace_back(c, p);
   }
   // p strictly between the end points of C (p known to be on C's line).
   static bool strictly_within(const Curve& C, const P2& p) {
@@ -733,8 +742,8 @@ struct Cutter {
   bool intersect(int ci, int di) {
     const Curve &C = ss.curves[ci], &D = ss.curves[di];
     if (!CGAL::do_overlap(C.box, D.box)) return false;
-    ++pairs;
-    const P2 cs = C.s.xy(), ct = C.t.xy(), ds = D.s.xy(), dt = D.t.xy();
+    ++row.pairs;
+    const P2 &cs = C.s.xy(), &ct = C.t.xy(), &ds = D.s.xy(), &dt = D.t.xy();   // (references: no handle copied)
     // End points known to be the same vertex need no predicate.
     auto same = [](long a, long b) { return a >= 0 && a == b; };
     const bool shared = same(C.vs, D.vs) || same(C.vs, D.vt) || same(C.vt, D.vs) || same(C.vt, D.vt);
@@ -743,10 +752,10 @@ struct Cutter {
       // same way; then the longer is cut where the shorter ends. Their depths agree
       // at p, so the depth order cannot change inside the common part.
       const bool ps = same(C.vs, D.vs) || same(C.vs, D.vt);
-      const P2 p = ps ? cs : ct, a = ps ? ct : cs;
-      const P2 b = (same(C.vs, D.vs) || same(C.vt, D.vs)) ? dt : ds;
+      const P2 &p = ps ? cs : ct, &a = ps ? ct : cs;
+      const P2& b = (same(C.vs, D.vs) || same(C.vt, D.vs)) ? dt : ds;
       if (CGAL::orientation(p, a, b) != CGAL::COLLINEAR || !CGAL::is_positive((a - p) * (b - p))) return true;
-      overlaps.emplace_back(ci, di);
+      row.overlaps.emplace_back(ci, di);
       if (strictly_within(C, b)) cut(ci, b);
       else if (strictly_within(D, a)) cut(di, a);
       return true;
@@ -758,7 +767,7 @@ struct Cutter {
     if (o3 != CGAL::COLLINEAR && o3 == o4) return false;
     if (o1 * o2 < 0 && o3 * o4 < 0) {   // proper crossing
       const P2 p = crossing_point(cs, ct, ds, dt);
-      ++crossings;
+      ++row.crossings;
       cut(ci, p);
       cut(di, p);
       return true;
@@ -782,7 +791,7 @@ struct Cutter {
     if (CGAL::sign(ds) * CGAL::sign(dt) >= 0) return;
     const P2 p = C.s.xy() + (ds / (ds - dt)) * (C.t.xy() - C.s.xy());
     if (!strictly_inside(F, p)) return;   // on its boundary: that edge's crossing cuts here
-    ++crossings;
+    ++row.crossings;
     cut(ci, p);
   }
 
@@ -790,7 +799,7 @@ struct Cutter {
   // their depths cross, so that the first in depth order is constant on each piece.
   void overlap(int ci, int di) {
     const Curve &C = ss.curves[ci], &D = ss.curves[di];
-    const P2 cs = C.s.xy(), ct = C.t.xy(), ds = D.s.xy(), dt = D.t.xy();
+    const P2 &cs = C.s.xy(), &ct = C.t.xy(), &ds = D.s.xy(), &dt = D.t.xy();
     std::array<P2, 4> pts{cs, ct, ds, dt};
     std::sort(pts.begin(), pts.end());   // lexicographic: along the line
     // Common part: the middle two, if C and D really overlap.
@@ -798,11 +807,11 @@ struct Cutter {
     if (!(lo < hi)) return;
     auto inside = [](const P2& a, const P2& b, const P2& p) { return CGAL::collinear_are_ordered_along_line(a, p, b); };
     if (!(inside(cs, ct, lo) && inside(cs, ct, hi) && inside(ds, dt, lo) && inside(ds, dt, hi))) return;
-    overlaps.emplace_back(ci, di);
+    row.overlaps.emplace_back(ci, di);
     for (const P2& p : {ds, dt}) if (strictly_within(C, p)) cut(ci, p);
     for (const P2& p : {cs, ct}) if (strictly_within(D, p)) cut(di, p);
     P2 x;
-    if (depth_crossing(C, D, lo, hi, x)) { cut(ci, x); cut(di, x); ++crossings; }
+    if (depth_crossing(C, D, lo, hi, x)) { cut(ci, x); cut(di, x); ++row.crossings; }
   }
 };
 
@@ -865,33 +874,46 @@ void share_overlap_cuts(const ScreenScene& ss, std::vector<std::pair<int, int>>&
 
 // Step 8: in each cell, every pair of curves; an intersection counts in the cell
 // holding it (half-open cells), so each is found once.
-Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, Stats& stats) {
+Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats& stats) {
   const std::size_t n = ss.curves.size();
   Cuts cuts;
   cuts.at.resize(n);
   cuts.needed.assign(n, 1);
-  Cutter cutter{g, ss, cuts.at, 0, 0};
+  std::vector<std::pair<int, int>> overlaps;
+  std::int64_t pairs = 0, crossings = 0;
+  // visit(cutter, cell) for every cell, the rows in parallel; what they found is
+  // joined in row order, as one pass over the cells in order would have found it.
   auto each_cell = [&](auto&& visit) {
-    for (int iy = 0; iy < g.Y.cells(); ++iy)
+    std::vector<RowCuts> rows(static_cast<std::size_t>(g.Y.cells()));
+    parallel_for(g.Y.cells(), threads, [&](int iy) {
+      Cutter cutter{g, ss, rows[static_cast<std::size_t>(iy)], 0, iy};
       for (int ix = 0; ix < g.X.cells(); ++ix) {
         cutter.ix = ix;
-        cutter.iy = iy;
-        visit(g.at(ix, iy));
+        visit(cutter, g.at(ix, iy));
       }
+    });
+    for (RowCuts& row : rows) {
+      for (auto& [c, p] : row.at) cuts.at[static_cast<std::size_t>(c)].push_back(std::move(p));
+      overlaps.insert(overlaps.end(), row.overlaps.begin(), row.overlaps.end());
+      for (int c : row.met) cuts.needed[static_cast<std::size_t>(c)] = 1;
+      pairs += row.pairs;
+      crossings += row.crossings;
+      row = RowCuts();
+    }
   };
   // A curve none of whose facets hides anything is cut where it pierces one.
-  auto pierce = [&](const Cell& cell, int ci) {
+  auto pierce = [&](Cutter& cutter, const Cell& cell, int ci) {
     const Curve& cv = ss.curves[ci];
     if (std::any_of(cv.sharers.begin(), cv.sharers.end(), [&](int s) { return ss.facets[s].occluder; })) return;
     for (int fi : cell.facets) cutter.pierce(ci, fi);
     if (cell.blocker >= 0) cutter.pierce(ci, cell.blocker);
   };
   if (regions) {
-    each_cell([&](const Cell& cell) {
+    each_cell([&](Cutter& cutter, const Cell& cell) {
       const auto& cs = cell.curves;
       for (std::size_t i = 0; i < cs.size(); ++i)
         for (std::size_t j = i + 1; j < cs.size(); ++j) cutter.intersect(cs[i], cs[j]);
-      for (int ci : cs) pierce(cell, ci);
+      for (int ci : cs) pierce(cutter, cell, ci);
     });
   } else {
     // The drawn lines alone (Franklin's step 8 iv-v): every pair with a drawn
@@ -903,27 +925,30 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, Stats& stats) {
     std::vector<char> drawn(n);
     for (std::size_t c = 0; c < n; ++c) drawn[c] = ss.curves[c].drawn;
     cuts.needed = drawn;
-    each_cell([&](const Cell& cell) {
+    each_cell([&](Cutter& cutter, const Cell& cell) {
       const auto& cs = cell.curves;
       for (std::size_t i = 0; i < cs.size(); ++i)
         for (std::size_t j = i + 1; j < cs.size(); ++j)
-          if ((drawn[cs[i]] || drawn[cs[j]]) && cutter.intersect(cs[i], cs[j])) cuts.needed[cs[i]] = cuts.needed[cs[j]] = 1;
+          if ((drawn[cs[i]] || drawn[cs[j]]) && cutter.intersect(cs[i], cs[j])) {
+            cutter.row.met.push_back(cs[i]);
+            cutter.row.met.push_back(cs[j]);
+          }
     });
     bucket_needed_curves(g, ss, cuts.needed);
-    each_cell([&](const Cell& cell) {
+    each_cell([&](Cutter& cutter, const Cell& cell) {
       const auto& cs = cell.curves;
       for (std::size_t i = 0; i < cs.size(); ++i)
         for (std::size_t j = i + 1; j < cs.size(); ++j)
           if (!drawn[cs[i]] && !drawn[cs[j]] && (cuts.needed[cs[i]] || cuts.needed[cs[j]])) cutter.intersect(cs[i], cs[j]);
       for (int ci : cs)
-        if (cuts.needed[ci]) pierce(cell, ci);
+        if (cuts.needed[ci]) pierce(cutter, cell, ci);
     });
     stats.count("curves_needed", std::count(cuts.needed.begin(), cuts.needed.end(), 1));
   }
-  share_overlap_cuts(ss, cutter.overlaps, cuts.at);
-  stats.count("edge_pairs_tested", cutter.pairs);
-  stats.count("intersections", cutter.crossings);
-  stats.count("overlapping_curve_pairs", static_cast<std::int64_t>(cutter.overlaps.size()));
+  share_overlap_cuts(ss, overlaps, cuts.at);   // (sorts the pairs and drops repeats)
+  stats.count("edge_pairs_tested", pairs);
+  stats.count("intersections", crossings);
+  stats.count("overlapping_curve_pairs", static_cast<std::int64_t>(overlaps.size()));
   return cuts;
 }
 
@@ -1065,14 +1090,20 @@ bool before(const Facet& x, const Facet& y, Probe& m, bool left_side) {
 // Steps 9 and 11: cut each curve at its sorted cut points; decide each piece at its
 // midpoint against the facets of the midpoint's cell: is it visible, which faces are
 // nearest on each side, and does this curve bound a region there.
-std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss, Cuts& cuts, Stats& stats) {
+namespace {
+
+// What classify_curve gives: its pieces worth keeping (visible or bounding a
+// region), in order along the curve, and counts.
+struct Classified {
   std::vector<VisiblePiece> out;
-  std::vector<Cover> covers;
   std::int64_t pieces = 0, visible = 0;
-  for (int ci = 0; ci < static_cast<int>(ss.curves.size()); ++ci) {
-    if (!cuts.needed[static_cast<std::size_t>(ci)]) continue;
+};
+
+// Steps 9 and 11 for curve ci, cut at pts (sorted here).
+void classify_curve(const Grid& g, const ScreenScene& ss, int ci, std::vector<P2>& pts, std::vector<Cover>& covers,
+                    Classified& res) {
+  {
     const Curve& cv = ss.curves[ci];
-    std::vector<P2>& pts = cuts.at[static_cast<std::size_t>(ci)];
     const P2 &s = cv.s.xy(), &t = cv.t.xy();
     // 9a: sort along the curve (the order of the dominant coordinate): |dx| >= |dy|,
     // decided on the end points' numbers (no lazy coordinate or difference built).
@@ -1108,9 +1139,9 @@ std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss, Cuts& 
     probe.x_moves = probe.idx.inf() > 0 || probe.idx.sup() < 0 || CGAL::compare_x(s, t) != CGAL::EQUAL;
     UpwardRounding upward;   // the loop calls only our own filtered predicates
     for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
-      ++pieces;
+      ++res.pieces;
       probe.at_midpoint(pts[k], pts[k + 1]);
-      Cell& cell = g.at(cell_index_of(g.X, probe.ix, [&] { probe.need_exact(); return probe.ex; }),
+      const Cell& cell = g.at(cell_index_of(g.X, probe.ix, [&] { probe.need_exact(); return probe.ex; }),
                         cell_index_of(g.Y, probe.iy, [&] { probe.need_exact(); return probe.ey; }));
       covers.clear();
       const CGAL::Bbox_2 mbox(probe.ix.inf(), probe.iy.inf(), probe.ix.sup(), probe.iy.sup());
@@ -1179,9 +1210,38 @@ std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss, Cuts& 
           if (both) vp.visible = false;
         }
       }
-      visible += vp.visible && cv.drawn;
-      if (vp.visible || vp.boundary) out.push_back(std::move(vp));
+      res.visible += vp.visible && cv.drawn;
+      if (vp.visible || vp.boundary) res.out.push_back(std::move(vp));
     }
+  }
+}
+
+}  // namespace
+
+std::vector<VisiblePiece> classify_pieces(const Grid& g, const ScreenScene& ss, Cuts& cuts, int threads, Stats& stats) {
+  // Chunks of consecutive curves, classified in parallel, their pieces joined in
+  // curve order: the same list for every thread count.
+  const int n = static_cast<int>(ss.curves.size()), size = 256;
+  std::vector<Classified> chunks(static_cast<std::size_t>(chunk_count(n, size)));
+  parallel_for(static_cast<int>(chunks.size()), threads, [&](int k) {
+    std::vector<Cover> covers;
+    const Chunk r = chunk(k, n, size);
+    for (int ci = r.begin; ci < r.end; ++ci)
+      if (cuts.needed[static_cast<std::size_t>(ci)])
+        classify_curve(g, ss, ci, cuts.at[static_cast<std::size_t>(ci)], covers, chunks[static_cast<std::size_t>(k)]);
+  });
+  std::size_t total = 0;
+  std::int64_t pieces = 0, visible = 0;
+  for (const Classified& c : chunks) {
+    total += c.out.size();
+    pieces += c.pieces;
+    visible += c.visible;
+  }
+  std::vector<VisiblePiece> out;
+  out.reserve(total);
+  for (Classified& c : chunks) {
+    std::move(c.out.begin(), c.out.end(), std::back_inserter(out));
+    std::vector<VisiblePiece>().swap(c.out);
   }
   stats.count("pieces", pieces);
   stats.count("visible_pieces", visible);

@@ -37,6 +37,7 @@ struct Grid {
   Axis X, Y;                    // cell boundaries
   std::vector<Cell> cells;      // row-major: cells[iy * X.cells() + ix]
   Cell& at(int ix, int iy) { return cells[static_cast<std::size_t>(iy) * X.cells() + ix]; }
+  const Cell& at(int ix, int iy) const { return cells[static_cast<std::size_t>(iy) * X.cells() + ix]; }
 };
 
 // A piece of a curve between consecutive cut points, classified at its midpoint.
@@ -60,8 +61,9 @@ struct Cuts {
   std::vector<std::vector<P2>> at;
   std::vector<char> needed;
 };
-Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, Stats& stats);        // step 8
-std::vector<VisiblePiece> classify_pieces(Grid& g, const ScreenScene& ss, Cuts& cuts, Stats& stats);  // steps 9, 11
+Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats& stats);        // step 8
+std::vector<VisiblePiece> classify_pieces(const Grid& g, const ScreenScene& ss, Cuts& cuts, int threads,
+                                          Stats& stats);                                        // steps 9, 11
 
 VISMAP_KERNEL_END
 }  // namespace vismap::engine

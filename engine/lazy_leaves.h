@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <mutex>
 
 #include "engine/exact_kernel.h"
 #include "engine/scene.h"
@@ -71,12 +72,15 @@ class PerspectiveRep final : public ExactRep {
 
 // The depth plane z = a x + b y + c through three screen points (not collinear on
 // screen): what its three coefficients share. The points are kept once, and
-// the exact plane is computed once, for whichever coefficient is asked first.
+// the exact plane is computed once, for whichever coefficient is asked first
+// (CGAL evaluates each coefficient once, but two threads may ask for two of
+// them at the same time: std::call_once).
 struct PlanePoints {
   std::array<FT, 9> pts;                            // x, y, z of the three points
   std::unique_ptr<std::array<mpq_class, 3>> exact;  // a, b, c, once computed
+  std::once_flag once;
   const mpq_class& coefficient(int which) {
-    if (!exact) {
+    std::call_once(once, [this] {
       exact = std::make_unique<std::array<mpq_class, 3>>();
       mpq_class q[9];
       for (int k = 0; k < 9; ++k) q[k] = to_mpq(pts[k]);
@@ -87,7 +91,7 @@ struct PlanePoints {
       e[0] = (z1 * y2 - y1 * z2) / nz;
       e[1] = (x1 * z2 - z1 * x2) / nz;
       e[2] = q[2] - e[0] * q[0] - e[1] * q[1];
-    }
+    });
     return (*exact)[which];
   }
 };

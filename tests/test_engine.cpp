@@ -56,12 +56,13 @@ TEST_P(Corpus, CheckerAcceptsTheMapAndRunsAreReproducible) {
   const fs::path dir = fs::temp_directory_path() / ("vismap_corpus_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path out1 = dir / (c.file + ".1.json"), out2 = dir / (c.file + ".2.json");
-  for (const fs::path& out : {out1, out2}) {
-    std::string cmd = std::string(VISMAP_BIN) + " '" + scene.string() + "' " + c.args + " --json '" + out.string() + "'";
+  for (const auto& [out, threads] : {std::pair{out1, " --threads 1"}, std::pair{out2, " --threads 3"}}) {
+    std::string cmd =
+        std::string(VISMAP_BIN) + " '" + scene.string() + "' " + c.args + threads + " --json '" + out.string() + "'";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
   }
   const std::string json = slurp(out1);
-  EXPECT_EQ(json, slurp(out2)) << "two runs differ";
+  EXPECT_EQ(json, slurp(out2)) << "two runs differ (one thread, three threads)";
   // The lines alone (--no-regions; a lines-only SVG): the same segments, byte for
   // byte, computed without the regions; the SVG as drawn from the whole map.
   const fs::path lines = dir / (c.file + ".lines.json"), svg_whole = dir / (c.file + ".whole.svg"),
@@ -160,6 +161,45 @@ TEST(GridIndependence, SameMapForEveryGridConstant) {
     for (double c : {0.3, 1.0, 2.5, 9.0}) {
       opt.grid_c = c;
       EXPECT_EQ(map_json(scene, view, opt), reference) << "grid c = " << c << ", seed " << seed;
+    }
+  }
+}
+
+// ---- threads change nothing -------------------------------------------------------------
+
+// Franklin's engine runs its loops on several threads and joins their results in
+// the serial order: the map, regions and segments and every counter but the
+// timings, is the same byte for byte for every thread count. The scenes are big
+// enough for every parallel loop to have many more chunks than threads.
+TEST(Threads, SameMapForEveryThreadCount) {
+  vismap::Scene squares = vismap::gen::random_squares_depth(3000, 5, 7);
+  vismap::gen::append_scene(squares, vismap::gen::interpenetrating_boxes(8, 7));
+  const vismap::Scene terrain = vismap::gen::terrain(40, 3);
+  struct View {
+    const vismap::Scene* scene;
+    vismap::CameraSpec camera;
+  };
+  const std::vector<View> views = {{&squares, ortho({-0.2, -0.3, -1})},
+                                   {&squares, persp({0.2, 0.3, 2.5}, {0.5, 0.5, 0.5}, 50)},
+                                   {&terrain, ortho({-1, -0.5, -0.7})}};
+  auto json_of = [](const vismap::Scene& scene, const vismap::View& view, vismap::EngineOptions opt) {
+    vismap::VisibilityMap map = vismap::visibility_franklin(scene, view, opt);
+    map.stats.seconds.clear();
+    return vismap::to_json(map);
+  };
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    const vismap::View view = vismap::make_view(views[v].camera, *views[v].scene);
+    for (bool regions : {true, false}) {
+      vismap::EngineOptions opt;
+      opt.regions = regions;
+      opt.threads = 1;
+      const std::string reference = json_of(*views[v].scene, view, opt);
+      ASSERT_NE(reference.find("\"segments\""), std::string::npos);
+      for (int threads : {2, 3, 8}) {
+        opt.threads = threads;
+        EXPECT_EQ(json_of(*views[v].scene, view, opt), reference)
+            << "view " << v << (regions ? "" : ", lines only") << ": " << threads << " threads differ from one";
+      }
     }
   }
 }

@@ -1,0 +1,89 @@
+// The engine's threads: loops whose iterations are independent, run on OpenMP
+// (GCC's libgomp, or LLVM's libomp under clang). Internal to the engine.
+//
+// What keeps the output identical for every thread count: an iteration writes
+// only its own slot (a cell's, a curve's, a chunk's), and the caller merges the
+// slots in index order, as the serial loop would have produced them. Nothing an
+// iteration decides depends on which thread ran it or when.
+//
+// What is per thread: the FPU rounding mode (each filtered predicate sets its
+// own, engine/exact_kernel.h's UpwardRounding is thread_local), and the filter
+// counters (engine/exact_config.h), which are summed into the calling thread's
+// here. CGAL is built thread-safe (exact_config.h): its lazy numbers, shared by
+// the iterations, count their references atomically once a second thread exists
+// and evaluate their exact values once (std::call_once).
+#pragma once
+#include <algorithm>
+#include <exception>
+#include <mutex>
+
+#include <CGAL/FPU.h>
+
+#include "engine/exact_kernel.h"
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace vismap::engine {
+
+// The number of threads a loop uses: `asked` if positive, else every core.
+inline int thread_count(int asked) {
+  if (asked > 0) return asked;
+#ifdef _OPENMP
+  return std::max(1, omp_get_num_procs());
+#else
+  return 1;
+#endif
+}
+
+// body(i) for every i in [0, n), on `threads` threads, scheduled dynamically
+// (cells and curves differ widely in work). The first exception a body throws is
+// rethrown here, after the loop.
+template <class Body>
+void parallel_for(int n, int threads, Body&& body) {
+#ifdef _OPENMP
+  if (threads > 1 && n > 1) {
+    std::exception_ptr error;
+    exact::FilterCounts workers;
+    std::mutex lock;
+    // Each thread runs the body in the caller's rounding mode, as the serial loop
+    // would (a pool thread keeps whatever mode it was left in or created with).
+    const CGAL::FPU_CW_t mode = CGAL::FPU_get_cw();
+    const bool upward = exact::rounding_upward;
+#pragma omp parallel num_threads(std::min(threads, n))
+    {
+      CGAL::FPU_set_cw(mode);
+      exact::rounding_upward = upward;
+      const exact::FilterCounts before = exact::filter_counts;
+#pragma omp for schedule(dynamic, 1)
+      for (int i = 0; i < n; ++i) {
+        try {
+          body(i);
+        } catch (...) {
+          std::lock_guard<std::mutex> hold(lock);
+          if (!error) error = std::current_exception();
+        }
+      }
+      if (omp_get_thread_num() != 0) {   // (thread 0 is the caller: its counts are the total)
+        std::lock_guard<std::mutex> hold(lock);
+        workers.calls += exact::filter_counts.calls - before.calls;
+        workers.exact += exact::filter_counts.exact - before.exact;
+      }
+    }
+    exact::filter_counts.calls += workers.calls;
+    exact::filter_counts.exact += workers.exact;
+    if (error) std::rethrow_exception(error);
+    return;
+  }
+#endif
+  for (int i = 0; i < n; ++i) body(i);
+}
+
+// [begin, end) of chunk k when n items are cut into chunks of `size`.
+struct Chunk {
+  int begin, end;
+};
+inline int chunk_count(int n, int size) { return (n + size - 1) / size; }
+inline Chunk chunk(int k, int n, int size) { return {k * size, std::min(n, (k + 1) * size)}; }
+
+}  // namespace vismap::engine
