@@ -38,7 +38,7 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   st.time("faces_to_cells", clock.lap());
 
   // Faces that pierce each other draw an intersection line: a curve like any edge.
-  add_intersection_lines(grid, ss, st);
+  add_intersection_lines(grid, ss, threads, st);
   // 7. Edges into the cells they cross, unless behind the blocking face; 7b drops hidden ones
   // (for a lines-only drawing, edges that are not drawn only where a drawn one is).
   bucket_curves(grid, ss, opt.regions, st);

@@ -489,46 +489,63 @@ bool share_an_edge(const Facet& A, const Facet& B) {
   return false;
 }
 
-// Faces that pierce each other: an intersection line for every pair of facets of
-// different faces that share a cell and cross inside both projections.
-void add_intersection_lines(Grid& g, ScreenScene& ss, Stats& stats) {
-  // Each facet's partners: facets of other faces listed with it in some cell, each
-  // once (stamped with the facet they were found for), tested in index order:
-  // no list of all pairs to sort and deduplicate.
-  const int nf = static_cast<int>(ss.facets.size());
-  std::vector<int> stamp(ss.facets.size(), -1), partners;
-  std::int64_t tested = 0, found = 0;
-  for (int fa = 0; fa < nf; ++fa) {
-    const Facet& A = ss.facets[fa];
-    if (!A.occluder) continue;
-    partners.clear();
-    auto consider = [&](int fb) {
-      if (fb <= fa || stamp[fb] == fa) return;
-      stamp[fb] = fa;
-      const Facet& B = ss.facets[fb];
-      if (A.face == B.face || !CGAL::do_overlap(A.box, B.box)) return;
-      // Depth ranges apart: no point of one is at the other's depth.
-      if (A.zhi < B.zlo || B.zhi < A.zlo) return;
-      if (share_an_edge(A, B)) return;
-      partners.push_back(fb);
-    };
-    const CellRange r = range_of(g, A.box);
-    for (int iy = r.y0; iy <= r.y1; ++iy)
-      for (int ix = r.x0; ix <= r.x1; ++ix) {
-        const Cell& cell = g.at(ix, iy);
-        if (cell.blocker != fa && std::find(cell.facets.begin(), cell.facets.end(), fa) == cell.facets.end()) continue;
-        for (int fb : cell.facets) consider(fb);
-        if (cell.blocker >= 0) consider(cell.blocker);
-      }
-    std::sort(partners.begin(), partners.end());
-    for (const int fb : partners) {
-      const Facet& B = ss.facets[fb];
-      ++tested;
-      P2 p, q;
-      if (!intersection_segment(A, B, ss.world, p, q)) continue;
-      ++found;
-      ss.curves.push_back(intersection_curve(P3(p, A.depth_at(p)), P3(q, A.depth_at(q)), fa, fb, A.face, B.face));
+namespace {
+
+// The intersection lines of facet fa with the facets after it that share a cell
+// with it (its partners, each once, in index order), appended to `out`.
+void intersection_lines_of(const Grid& g, const ScreenScene& ss, int fa, std::vector<int>& partners,
+                           std::vector<Curve>& out, std::int64_t& tested) {
+  const Facet& A = ss.facets[fa];
+  if (!A.occluder) return;
+  partners.clear();
+  const CellRange r = range_of(g, A.box);
+  for (int iy = r.y0; iy <= r.y1; ++iy)
+    for (int ix = r.x0; ix <= r.x1; ++ix) {
+      const Cell& cell = g.at(ix, iy);
+      if (cell.blocker != fa && std::find(cell.facets.begin(), cell.facets.end(), fa) == cell.facets.end()) continue;
+      for (int fb : cell.facets)
+        if (fb > fa) partners.push_back(fb);
+      if (cell.blocker > fa) partners.push_back(cell.blocker);
     }
+  std::sort(partners.begin(), partners.end());
+  partners.erase(std::unique(partners.begin(), partners.end()), partners.end());
+  for (const int fb : partners) {
+    const Facet& B = ss.facets[fb];
+    if (A.face == B.face || !CGAL::do_overlap(A.box, B.box)) continue;
+    // Depth ranges apart: no point of one is at the other's depth.
+    if (A.zhi < B.zlo || B.zhi < A.zlo) continue;
+    if (share_an_edge(A, B)) continue;
+    ++tested;
+    P2 p, q;
+    if (!intersection_segment(A, B, ss.world, p, q)) continue;
+    out.push_back(intersection_curve(P3(p, A.depth_at(p)), P3(q, A.depth_at(q)), fa, fb, A.face, B.face));
+  }
+}
+
+}  // namespace
+
+// Faces that pierce each other: an intersection line for every pair of facets of
+// different faces that share a cell and cross inside both projections. Chunks of
+// facets in parallel; their lines are appended in facet order.
+void add_intersection_lines(const Grid& g, ScreenScene& ss, int threads, Stats& stats) {
+  struct Found {
+    std::vector<Curve> curves;
+    std::int64_t tested = 0;
+  };
+  const int nf = static_cast<int>(ss.facets.size()), size = 512;
+  std::vector<Found> chunks(static_cast<std::size_t>(chunk_count(nf, size)));
+  parallel_for(static_cast<int>(chunks.size()), threads, [&](int k) {
+    std::vector<int> partners;
+    Found& found = chunks[static_cast<std::size_t>(k)];
+    const Chunk r = chunk(k, nf, size);
+    for (int fa = r.begin; fa < r.end; ++fa) intersection_lines_of(g, ss, fa, partners, found.curves, found.tested);
+  });
+  std::int64_t tested = 0, found = 0;
+  for (Found& c : chunks) {
+    tested += c.tested;
+    found += static_cast<std::int64_t>(c.curves.size());
+    std::move(c.curves.begin(), c.curves.end(), std::back_inserter(ss.curves));
+    std::vector<Curve>().swap(c.curves);
   }
   stats.count("facet_pairs_tested", tested);
   stats.count("intersection_lines", found);

@@ -53,7 +53,7 @@ struct VisiblePiece {
 Grid make_grid(const ScreenScene& ss, double c, Stats& stats);                    // steps 2-4
 void bucket_facets(Grid& g, ScreenScene& ss, Stats& stats);                       // step 5
 void prune_facets(Grid& g, const ScreenScene& ss, Stats& stats);                  // step 6
-void add_intersection_lines(Grid& g, ScreenScene& ss, Stats& stats);              // faces piercing each other
+void add_intersection_lines(const Grid& g, ScreenScene& ss, int threads, Stats& stats);   // faces piercing each other
 void bucket_curves(Grid& g, const ScreenScene& ss, bool regions, Stats& stats);   // step 7
 // Step 8's cut points per curve, and which curves the map needs (all of them,
 // unless only the drawn lines are wanted).

@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 
 #include "engine/culling.h"
-#include "engine/lazy_leaves.h"
 #include "engine/edge_pieces.h"
 #include "engine/engine_run.h"
+#include "engine/lazy_leaves.h"
 #include "engine/morton.h"
+#include "engine/parallel.h"
 #include "engine/world_exact.h"
 
 namespace vismap::engine {
@@ -253,8 +255,10 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   std::vector<char> front(used.size(), 0);
   std::vector<std::int8_t> zsign(used.size(), 1);   // sign of Z (perspective): the near plane is Z = 0
   // Input vertices: exact values that no rational arithmetic is done for unless
-  // a predicate needs them (engine/lazy_leaves.h).
-  for (std::uint32_t u = 0; u < used.size(); ++u) {
+  // a predicate needs them (engine/lazy_leaves.h). In parallel, chunks of them.
+  const int threads = thread_count(opt.threads);
+  const int nu = static_cast<int>(used.size());
+  auto project_vertex = [&](std::uint32_t u) {
     const Vec3& p = scene.vertices[used[u]];
     if (!view.perspective) {
       // Each coordinate is a double where it is one exactly, else a lazy leaf:
@@ -265,17 +269,21 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
         if (!exact_in_doubles(view.m[r], p, d[r])) d[r] = std::nan("");
       auto coordinate = [&](int r) { return std::isnan(d[r]) ? projected_number(view.m[r], p, k) : scaled(d[r], k); };
       sv[u] = P3{coordinate(0), coordinate(1), coordinate(2)};
-      continue;
+      return;
     }
     // Perspective: X/W, Y/W, Z/W as lazy leaves (the quotient's interval now),
     // kept where Z > 0 and W > 0 (decided exactly on binary floats).
     hz[u] = projected_number(view.m[2], p, 0);   // (for clipping at the near plane)
     zsign[u] = static_cast<std::int8_t>(projected_sign(view.m[2], p));
     front[u] = zsign[u] > 0 && projected_sign(view.m[3], p) > 0;
-    if (!front[u]) continue;
+    if (!front[u]) return;
     sv[u] = P3{perspective_number(view.m[0], view.m[3], p, k), perspective_number(view.m[1], view.m[3], p, k),
                perspective_number(view.m[2], view.m[3], p, k)};
-  }
+  };
+  parallel_for(chunk_count(nu, 1024), threads, [&](int c) {
+    const Chunk r = chunk(c, nu, 1024);
+    for (int u = r.begin; u < r.end; ++u) project_vertex(static_cast<std::uint32_t>(u));
+  });
   auto in_front = [&](std::uint32_t id) { return front[local[id]] != 0; };
   auto image = [&](std::uint32_t id) -> const P3& { return sv[local[id]]; };
   auto world = [&](std::uint32_t id) {
@@ -295,8 +303,11 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
 
   ss.facets.resize(wf.facets.size());
   std::vector<std::vector<P3>> clip_edges(wf.facets.size());  // near-plane cuts
-  std::int64_t outside = 0, edge_on = 0;
-  for (std::size_t fi = 0; fi < wf.facets.size(); ++fi) {
+  // Each facet on its own (in parallel, chunks of them): its screen polygon,
+  // facing and depth plane. What a chunk culled is counted in its slot.
+  const int nf = static_cast<int>(wf.facets.size());
+  std::vector<std::array<std::int64_t, 2>> culled(static_cast<std::size_t>(chunk_count(nf, 512)));
+  auto project_facet = [&](std::size_t fi, std::int64_t& outside, std::int64_t& edge_on) {
     const WorldFacet& w = wf.facets[fi];
     Facet& f = ss.facets[fi];
     f.face = w.face;
@@ -315,7 +326,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
         else clip_edges[fi].insert(clip_edges[fi].begin(), f.v.back());
       }
     }
-    if (f.v.size() < 3) { f.v.clear(); f.id.clear(); ++outside; continue; }
+    if (f.v.size() < 3) { f.v.clear(); f.id.clear(); ++outside; return; }
     // Facing: the sign of the projected area (vertex coordinates are leaves:
     // intervals first, their exact values where those cannot tell).
     const std::size_t nv = f.v.size();
@@ -337,7 +348,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
           return area2;
         });
     f.facing = s > 0 ? Facing::Front : s < 0 ? Facing::Back : Facing::EdgeOn;
-    if (f.facing == Facing::EdgeOn) { ++edge_on; continue; }
+    if (f.facing == Facing::EdgeOn) { ++edge_on; return; }
     f.box = box_of(f.v[0]);
     f.zlo = HUGE_VAL;
     f.zhi = -HUGE_VAL;
@@ -357,14 +368,14 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
         })) {
       f.a = f.b = FT(0);
       f.c = FT(z0i.inf());
-      continue;
+      return;
     }
     // depth = a x + b y + c from three vertices that are not collinear on screen:
     // lazy leaves whose intervals come from the vertices' (exact only on demand),
     // or, where no three vertices' intervals can tell, computed once in GMP.
     bool lazy = false;
     for (std::size_t k = 1; k + 1 < nv && !lazy; ++k) lazy = depth_plane(f.v[0], f.v[k], f.v[k + 1], f.a, f.b, f.c);
-    if (lazy) continue;
+    if (lazy) return;
     const Num x0 = num(f.v[0].x), y0 = num(f.v[0].y), z0 = num(f.v[0].z);
     for (std::size_t k = 1; k + 1 < nv; ++k) {
       const P3 &p1 = f.v[k], &p2 = f.v[k + 1];
@@ -378,6 +389,16 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
       f.c = FT(Num(z0 - a * x0 - b * y0));
       break;
     }
+  };
+  parallel_for(static_cast<int>(culled.size()), threads, [&](int c) {
+    const Chunk r = chunk(c, nf, 512);
+    for (int fi = r.begin; fi < r.end; ++fi)
+      project_facet(static_cast<std::size_t>(fi), culled[static_cast<std::size_t>(c)][0], culled[static_cast<std::size_t>(c)][1]);
+  });
+  std::int64_t outside = 0, edge_on = 0;
+  for (const auto& c : culled) {
+    outside += c[0];
+    edge_on += c[1];
   }
   stats.count("culled_outside_view", outside);
   stats.count("culled_edge_on", edge_on);
@@ -415,18 +436,13 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   stats.count("culled_back_faces", back);
   stats.count("near_plane_caps", static_cast<std::int64_t>(caps.size()));
 
-  // Each facet's spanning corners in the world, for the crease angle (found when first needed).
-  std::vector<Spanning> spanning(wf.facets.size());
-  std::vector<char> has_spanning(wf.facets.size(), 0);
-  auto spanning_of = [&](int fi) -> const Spanning& {
-    if (!has_spanning[fi]) { spanning[fi] = spanning_corners(scene, wf.facets[fi]); has_spanning[fi] = 1; }
-    return spanning[fi];
-  };
+  // Each facet's spanning corners in the world, for the crease angle.
+  auto spanning_of = [&](int fi) { return spanning_corners(scene, wf.facets[fi]); };
 
   const double cos_crease = std::cos(opt.crease_deg * M_PI / 180);
-  std::int64_t dropped_hidden = 0, dropped_clipped = 0, dropped_point = 0;
-  ss.curves.reserve(pieces.size() + ss.facets.size() / 8);   // (+ near-plane cuts; + intersection lines later)
-  for (const WorldPiece& wp : pieces) {
+  // The curve of edge piece wp, into `out`, unless it is dropped (counted in `dropped`).
+  auto make_curve = [&](const WorldPiece& wp, std::vector<Curve>& out, std::array<std::int64_t, 3>& dropped) {
+    std::int64_t &dropped_hidden = dropped[0], &dropped_clipped = dropped[1], &dropped_point = dropped[2];
     Curve c;
     bool any_occluder = false;
     for (const Sharer& s : wp.sharers) {
@@ -439,7 +455,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     }
     // Every facet sharing it is a culled back face: hidden (or coincident with a
     // nearer visible line on screen), so it cannot change the map.
-    if (!any_occluder) { ++dropped_hidden; continue; }
+    if (!any_occluder) { ++dropped_hidden; return; }
     std::sort(c.faces.begin(), c.faces.end());
     c.faces.erase(std::unique(c.faces.begin(), c.faces.end()), c.faces.end());
     // Kind, from the faces sharing the piece.
@@ -467,14 +483,35 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     // Clip at the near plane, project.
     std::uint32_t a = wp.a, b = wp.b;
     const bool fa = in_front(a), fb = in_front(b);
-    if (!fa && !fb) { ++dropped_clipped; continue; }
+    if (!fa && !fb) { ++dropped_clipped; return; }
     c.s = fa ? image(a) : clip_point(b, a);
     c.t = fb ? image(b) : clip_point(a, b);
     c.vs = fa ? static_cast<long>(a) : -1;
     c.vt = fb ? static_cast<long>(b) : -1;
-    if (c.s.xy() == c.t.xy()) { ++dropped_point; continue; }   // seen end-on
+    if (c.s.xy() == c.t.xy()) { ++dropped_point; return; }   // seen end-on
     c.box = box_of(c.s) + box_of(c.t);
-    ss.curves.push_back(std::move(c));
+    out.push_back(std::move(c));
+  };
+  // Chunks of pieces in parallel; their curves appended in piece order.
+  struct Made {
+    std::vector<Curve> curves;
+    std::array<std::int64_t, 3> dropped{};
+  };
+  const int np = static_cast<int>(pieces.size());
+  std::vector<Made> made(static_cast<std::size_t>(chunk_count(np, 1024)));
+  parallel_for(static_cast<int>(made.size()), threads, [&](int k) {
+    const Chunk r = chunk(k, np, 1024);
+    Made& m = made[static_cast<std::size_t>(k)];
+    for (int i = r.begin; i < r.end; ++i) make_curve(pieces[static_cast<std::size_t>(i)], m.curves, m.dropped);
+  });
+  std::int64_t dropped_hidden = 0, dropped_clipped = 0, dropped_point = 0;
+  ss.curves.reserve(pieces.size() + ss.facets.size() / 8);   // (+ near-plane cuts; + intersection lines later)
+  for (Made& m : made) {
+    dropped_hidden += m.dropped[0];
+    dropped_clipped += m.dropped[1];
+    dropped_point += m.dropped[2];
+    std::move(m.curves.begin(), m.curves.end(), std::back_inserter(ss.curves));
+    std::vector<Curve>().swap(m.curves);
   }
   // The near-plane cut of a facet bounds its region but is never drawn.
   for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) {
