@@ -32,16 +32,16 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   // 2-4. The variable grid: B = c * min(sqrt(N), 1/L) cells per side.
   Grid grid = make_grid(ss, opt.grid_c, st);
   // 5. Faces into cells, with each cell's blocking face; 5c drops faces hidden everywhere.
-  bucket_facets(grid, ss, st);
+  bucket_facets(grid, ss, threads, st);
   // 6. Remove what each cell's final blocking face hides.
-  prune_facets(grid, ss, st);
+  prune_facets(grid, ss, threads, st);
   st.time("faces_to_cells", clock.lap());
 
   // Faces that pierce each other draw an intersection line: a curve like any edge.
   add_intersection_lines(grid, ss, threads, st);
   // 7. Edges into the cells they cross, unless behind the blocking face; 7b drops hidden ones
   // (for a lines-only drawing, edges that are not drawn only where a drawn one is).
-  bucket_curves(grid, ss, opt.regions, st);
+  bucket_curves(grid, ss, opt.regions, threads, st);
   st.time("edges_to_cells", clock.lap());
 
   // 8. Intersect the edges pairwise within each cell (for a lines-only drawing:
@@ -50,7 +50,7 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   st.time("intersections", clock.lap());
 
   // 9, 11. Cut edges into pieces; each piece's visibility, and the nearest face on each side.
-  std::vector<VisiblePiece> pieces = classify_pieces(grid, ss, cuts, threads, st);
+  PieceChunks pieces = classify_pieces(grid, ss, cuts, threads, st);
   // The grid and the cut points have served: freed before the map is built, whose
   // graph is then the largest thing alive (10^6 faces: hundreds of MB less at the peak).
   grid = Grid();
@@ -64,23 +64,29 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   // squares from 10^3 up), it refuses them (std::logic_error) instead of
   // writing a map that is wrong.
   std::vector<FloatPiece> mp;
-  mp.reserve(pieces.size());
-  for (const VisiblePiece& p : pieces) {
-    const Curve& c = ss.curves[p.curve];
-    mp.push_back(FloatPiece{p.a.x(), p.a.y(), p.b.x(), p.b.y(), depth_on(c, p.a), depth_on(c, p.b), p.left,
-                            p.right, p.visible, p.visible && c.drawn, c.kind, &c.faces, c.order_face});
-  }
+  for (const std::vector<VisiblePiece>& chunk : pieces)
+    for (const VisiblePiece& p : chunk) {
+      const Curve& c = ss.curves[p.curve];
+      mp.push_back(FloatPiece{p.a.x(), p.a.y(), p.b.x(), p.b.y(), depth_on(c, p.a), depth_on(c, p.b), p.left,
+                              p.right, p.visible, p.visible && c.drawn, c.kind, &c.faces, c.order_face});
+    }
   build_map_from_floats(mp, map);
 #else
   std::vector<MapPiece> mp;
-  mp.reserve(pieces.size());
-  for (const VisiblePiece& p : pieces) {
-    const Curve& c = ss.curves[p.curve];
-    mp.push_back(MapPiece{p.a, p.b, &c.s, &c.t, p.left, p.right, p.visible, p.visible && c.drawn, c.kind, &c.faces,
-                          c.order_face});
+  std::size_t total = 0;
+  for (const std::vector<VisiblePiece>& chunk : pieces) total += chunk.size();
+  mp.reserve(total);
+  // The map needs the curves alone from here: the pieces (chunk by chunk) and
+  // the facets are freed.
+  for (std::vector<VisiblePiece>& chunk : pieces) {
+    for (const VisiblePiece& p : chunk) {
+      const Curve& c = ss.curves[p.curve];
+      mp.push_back(MapPiece{p.a, p.b, &c.s, &c.t, p.left, p.right, p.visible, p.visible && c.drawn, c.kind, &c.faces,
+                            c.order_face});
+    }
+    std::vector<VisiblePiece>().swap(chunk);
   }
-  // The map needs the curves alone from here: the pieces and facets are freed.
-  std::vector<VisiblePiece>().swap(pieces);
+  PieceChunks().swap(pieces);
   std::vector<Facet>().swap(ss.facets);
   if (opt.regions) assemble_map(mp, map);
   else assemble_segments(mp, map);

@@ -333,51 +333,101 @@ Grid make_grid(const ScreenScene& ss, double c, Stats& stats) {
   return g;
 }
 
+namespace {
+
+// The items (facets or curves, by index, in index order) whose box reaches each
+// row of cells. The rows then fill their cells in parallel: a cell sees its
+// items in index order, as one pass over the items in order would give them.
+template <class BoxOf>
+std::vector<std::vector<int>> items_by_row(const Grid& g, int n, BoxOf&& box_of) {
+  std::vector<std::vector<int>> rows(static_cast<std::size_t>(g.Y.cells()));
+  for (int i = 0; i < n; ++i) {
+    const CGAL::Bbox_2* b = box_of(i);
+    if (!b) continue;
+    const int y0 = g.Y.index(b->ymin()), y1 = g.Y.index(b->ymax());
+    for (int iy = y0; iy <= y1; ++iy) rows[static_cast<std::size_t>(iy)].push_back(i);
+  }
+  return rows;
+}
+
+// Marks, after a parallel pass over rows, the items some row kept.
+void mark_kept(std::vector<std::vector<int>>& kept_by_row, std::vector<char>& kept) {
+  for (auto& row : kept_by_row) {
+    for (int i : row) kept[static_cast<std::size_t>(i)] = 1;
+    std::vector<int>().swap(row);
+  }
+}
+
+// Step 5 for facet fi in cell (ix, iy): listed, made the blocker, or skipped as
+// hidden by the blocker there. True if the facet is kept in the cell.
+bool bucket_facet(Grid& g, const ScreenScene& ss, int fi, int ix, int iy, std::int64_t& skipped,
+                  std::int64_t& blockers) {
+  const Facet& f = ss.facets[fi];
+  Cell& cell = g.at(ix, iy);
+  auto c = corners(g, ix, iy);
+  if (cell.blocker >= 0 && behind_throughout(f, ss.facets[cell.blocker], c)) { ++skipped; return false; }
+  // Only a planar polygon's facet may block: the edges of its own face lie in
+  // its plane, so what is behind it cannot hide them. A non-planar polygon's
+  // fan piece can be in front of its own face's edge while another face,
+  // behind the piece, still hides that edge (no face hides its own edges).
+  bool covers = f.planar && std::all_of(c.begin(), c.end(), [&](const Corner& p) { return strictly_inside(f, p); });
+  if (!covers) { cell.facets.push_back(fi); return true; }
+  ++blockers;
+  if (cell.blocker < 0 || behind_throughout(ss.facets[cell.blocker], f, c)) { cell.blocker = fi; return true; }
+  // Two covering facets that cross inside the cell: the nearer at the centre
+  // blocks, the other stays listed.
+  P2 mid(FT(g.X[ix] + g.X[ix + 1]) / 2, FT(g.Y[iy] + g.Y[iy + 1]) / 2);
+  const Facet& b = ss.facets[cell.blocker];
+  bool nearer = f.depth_at(mid) < b.depth_at(mid) || (f.depth_at(mid) == b.depth_at(mid) && f.face < b.face);
+  if (nearer) { cell.facets.push_back(cell.blocker); cell.blocker = fi; }
+  else cell.facets.push_back(fi);
+  return true;
+}
+
+}  // namespace
+
 // Step 5: each facet goes to the cells of its bounding box, unless the cell's
 // blocking facet hides it there; a facet covering a cell may become its blocker.
-void bucket_facets(Grid& g, ScreenScene& ss, Stats& stats) {
+// Rows of cells in parallel.
+void bucket_facets(Grid& g, ScreenScene& ss, int threads, Stats& stats) {
+  const int nf = static_cast<int>(ss.facets.size());
+  auto rows = items_by_row(g, nf, [&](int fi) { return ss.facets[fi].occluder ? &ss.facets[fi].box : nullptr; });
+  std::vector<std::vector<int>> kept_by_row(rows.size());
+  std::vector<std::array<std::int64_t, 2>> counts(rows.size());   // skipped, blockers
+  parallel_for(g.Y.cells(), threads, [&](int iy) {
+    UpwardRounding upward;   // the corner tests are our own filtered predicates
+    const auto row = static_cast<std::size_t>(iy);
+    for (int fi : rows[row]) {
+      const CGAL::Bbox_2& box = ss.facets[fi].box;
+      bool kept = false;
+      for (int ix = g.X.index(box.xmin()), x1 = g.X.index(box.xmax()); ix <= x1; ++ix)
+        kept |= bucket_facet(g, ss, fi, ix, iy, counts[row][0], counts[row][1]);
+      if (kept) kept_by_row[row].push_back(fi);
+    }
+    std::vector<int>().swap(rows[row]);
+  });
+  std::vector<char> kept(ss.facets.size(), 0);
+  mark_kept(kept_by_row, kept);
   std::int64_t hidden_facets = 0, skipped = 0, blockers = 0;
-  UpwardRounding upward;   // the corner tests are our own filtered predicates
-  for (int fi = 0; fi < static_cast<int>(ss.facets.size()); ++fi) {
+  for (int fi = 0; fi < nf; ++fi) {
     Facet& f = ss.facets[fi];
-    if (!f.occluder) continue;
-    bool kept = false;
-    CellRange r = range_of(g, f.box);
-    for (int iy = r.y0; iy <= r.y1; ++iy)
-      for (int ix = r.x0; ix <= r.x1; ++ix) {
-        Cell& cell = g.at(ix, iy);
-        auto c = corners(g, ix, iy);
-        if (cell.blocker >= 0 && behind_throughout(f, ss.facets[cell.blocker], c)) { ++skipped; continue; }
-        kept = true;
-        // Only a planar polygon's facet may block: the edges of its own face lie in
-        // its plane, so what is behind it cannot hide them. A non-planar polygon's
-        // fan piece can be in front of its own face's edge while another face,
-        // behind the piece, still hides that edge (no face hides its own edges).
-        bool covers = f.planar &&
-                      std::all_of(c.begin(), c.end(), [&](const Corner& p) { return strictly_inside(f, p); });
-        if (!covers) { cell.facets.push_back(fi); continue; }
-        ++blockers;
-        if (cell.blocker < 0 || behind_throughout(ss.facets[cell.blocker], f, c)) { cell.blocker = fi; continue; }
-        // Two covering facets that cross inside the cell: the nearer at the centre
-        // blocks, the other stays listed.
-        P2 mid(FT(g.X[ix] + g.X[ix + 1]) / 2, FT(g.Y[iy] + g.Y[iy + 1]) / 2);
-        const Facet& b = ss.facets[cell.blocker];
-        bool nearer = f.depth_at(mid) < b.depth_at(mid) || (f.depth_at(mid) == b.depth_at(mid) && f.face < b.face);
-        if (nearer) { cell.facets.push_back(cell.blocker); cell.blocker = fi; }
-        else cell.facets.push_back(fi);
-      }
-    if (!kept) { f.occluder = false; ++hidden_facets; }   // step 5c
+    if (f.occluder && !kept[static_cast<std::size_t>(fi)]) { f.occluder = false; ++hidden_facets; }   // step 5c
+  }
+  for (const auto& c : counts) {
+    skipped += c[0];
+    blockers += c[1];
   }
   stats.count("facet_cells_behind_blocker", skipped);
   stats.count("blocking_candidates", blockers);
   stats.count("culled_behind_blocking_face", hidden_facets);
 }
 
-// Step 6: drop what the final blocker hides (it may have changed after a facet was listed).
-void prune_facets(Grid& g, const ScreenScene& ss, Stats& stats) {
-  std::int64_t pruned = 0;
-  UpwardRounding upward;
-  for (int iy = 0; iy < g.Y.cells(); ++iy)
+// Step 6: drop what the final blocker hides (it may have changed after a facet
+// was listed). Rows of cells in parallel.
+void prune_facets(Grid& g, const ScreenScene& ss, int threads, Stats& stats) {
+  std::vector<std::int64_t> pruned_by_row(static_cast<std::size_t>(g.Y.cells()), 0);
+  parallel_for(g.Y.cells(), threads, [&](int iy) {
+    UpwardRounding upward;
     for (int ix = 0; ix < g.X.cells(); ++ix) {
       Cell& cell = g.at(ix, iy);
       if (cell.blocker < 0) continue;
@@ -386,8 +436,11 @@ void prune_facets(Grid& g, const ScreenScene& ss, Stats& stats) {
       auto hidden = [&](int fi) { return fi == cell.blocker || behind_throughout(ss.facets[fi], b, c); };
       std::size_t before = cell.facets.size();
       cell.facets.erase(std::remove_if(cell.facets.begin(), cell.facets.end(), hidden), cell.facets.end());
-      pruned += static_cast<std::int64_t>(before - cell.facets.size());
+      pruned_by_row[static_cast<std::size_t>(iy)] += static_cast<std::int64_t>(before - cell.facets.size());
     }
+  });
+  std::int64_t pruned = 0;
+  for (std::int64_t p : pruned_by_row) pruned += p;
   stats.count("facet_cells_pruned", pruned);
 }
 
@@ -555,17 +608,21 @@ namespace {
 
 // Step 7 for the curves `take` admits, into the cells `into` admits: each goes
 // to the cells it passes through, unless it lies wholly behind the cell's
-// blocker (7a-i). Returns how many it listed nowhere (hidden: 7b).
+// blocker (7a-i). Returns how many it listed nowhere (hidden: 7b). Rows of
+// cells in parallel (`into` must not depend on what this call lists).
 template <class Take, class Into>
-std::int64_t bucket(Grid& g, const ScreenScene& ss, Take&& take, Into&& into, std::int64_t& listed) {
-  std::int64_t hidden = 0;
-  UpwardRounding upward;   // meets_cell, curve_behind: our own filtered predicates
-  for (int ci = 0; ci < static_cast<int>(ss.curves.size()); ++ci) {
-    if (!take(ci)) continue;
-    const Curve& cv = ss.curves[ci];
-    CellRange r = range_of(g, cv.box);
-    bool kept = false;
-    for (int iy = r.y0; iy <= r.y1; ++iy)
+std::int64_t bucket(Grid& g, const ScreenScene& ss, int threads, Take&& take, Into&& into, std::int64_t& listed) {
+  const int nc = static_cast<int>(ss.curves.size());
+  auto rows = items_by_row(g, nc, [&](int ci) { return take(ci) ? &ss.curves[ci].box : nullptr; });
+  std::vector<std::vector<int>> kept_by_row(rows.size());
+  std::vector<std::int64_t> listed_by_row(rows.size(), 0);
+  parallel_for(g.Y.cells(), threads, [&](int iy) {
+    UpwardRounding upward;   // meets_cell, curve_behind: our own filtered predicates
+    const auto row = static_cast<std::size_t>(iy);
+    for (int ci : rows[row]) {
+      const Curve& cv = ss.curves[ci];
+      const CellRange r = range_of(g, cv.box);
+      bool kept = false;
       for (int ix = r.x0; ix <= r.x1; ++ix) {
         if (!into(ix, iy)) continue;
         Cell& cell = g.at(ix, iy);
@@ -575,10 +632,17 @@ std::int64_t bucket(Grid& g, const ScreenScene& ss, Take&& take, Into&& into, st
         if (cell.blocker >= 0 && curve_behind(cv, ss.facets[cell.blocker], ss.world)) continue;
         cell.curves.push_back(ci);
         kept = true;
-        ++listed;
+        ++listed_by_row[row];
       }
-    hidden += !kept;
-  }
+      if (kept) kept_by_row[row].push_back(ci);
+    }
+    std::vector<int>().swap(rows[row]);
+  });
+  std::vector<char> kept(ss.curves.size(), 0);
+  mark_kept(kept_by_row, kept);
+  std::int64_t hidden = 0;
+  for (int ci = 0; ci < nc; ++ci) hidden += take(ci) && !kept[static_cast<std::size_t>(ci)];
+  for (std::int64_t l : listed_by_row) listed += l;
   return hidden;
 }
 
@@ -586,13 +650,13 @@ std::int64_t bucket(Grid& g, const ScreenScene& ss, Take&& take, Into&& into, st
 // the curves that are not drawn only where a drawn one is (hot cells). Those now
 // needed go to their other cells too, and every curve that is not drawn to those
 // cells, for the second pass.
-void bucket_needed_curves(Grid& g, const ScreenScene& ss, const std::vector<char>& needed) {
+void bucket_needed_curves(Grid& g, const ScreenScene& ss, const std::vector<char>& needed, int threads) {
   std::vector<char> hot(g.cells.size());
   for (std::size_t k = 0; k < g.cells.size(); ++k) hot[k] = !g.cells[k].curves.empty();
   auto cold = [&](int ix, int iy) { return !hot[static_cast<std::size_t>(iy) * g.X.cells() + ix]; };
   std::int64_t listed = 0;
-  bucket(g, ss, [&](int ci) { return !ss.curves[ci].drawn && needed[ci]; }, cold, listed);
-  bucket(g, ss, [&](int ci) { return !ss.curves[ci].drawn && !needed[ci]; },
+  bucket(g, ss, threads, [&](int ci) { return !ss.curves[ci].drawn && needed[ci]; }, cold, listed);
+  bucket(g, ss, threads, [&](int ci) { return !ss.curves[ci].drawn && !needed[ci]; },
          [&](int ix, int iy) { return cold(ix, iy) && !g.at(ix, iy).curves.empty(); }, listed);
 }
 
@@ -602,14 +666,14 @@ void bucket_needed_curves(Grid& g, const ScreenScene& ss, const std::vector<char
 // behind the cell's blocker (7a-i); a curve listed nowhere is hidden (7b). For
 // the drawn lines alone: the drawn curves everywhere, the others only into cells
 // where a drawn one is (where they could meet it; cut_curves adds the rest it needs).
-void bucket_curves(Grid& g, const ScreenScene& ss, bool regions, Stats& stats) {
+void bucket_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats& stats) {
   std::int64_t listed = 0, hidden = 0;
   auto everywhere = [](int, int) { return true; };
   if (regions) {
-    hidden = bucket(g, ss, [](int) { return true; }, everywhere, listed);
+    hidden = bucket(g, ss, threads, [](int) { return true; }, everywhere, listed);
   } else {
-    hidden = bucket(g, ss, [&](int ci) { return ss.curves[ci].drawn; }, everywhere, listed);
-    bucket(g, ss, [&](int ci) { return !ss.curves[ci].drawn; }, [&](int ix, int iy) { return !g.at(ix, iy).curves.empty(); },
+    hidden = bucket(g, ss, threads, [&](int ci) { return ss.curves[ci].drawn; }, everywhere, listed);
+    bucket(g, ss, threads, [&](int ci) { return !ss.curves[ci].drawn; }, [&](int ix, int iy) { return !g.at(ix, iy).curves.empty(); },
            listed);
   }
   stats.count("curve_cells", listed);
@@ -951,7 +1015,7 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
             cutter.row.met.push_back(cs[j]);
           }
     });
-    bucket_needed_curves(g, ss, cuts.needed);
+    bucket_needed_curves(g, ss, cuts.needed, threads);
     each_cell([&](Cutter& cutter, const Cell& cell) {
       const auto& cs = cell.curves;
       for (std::size_t i = 0; i < cs.size(); ++i)
@@ -1235,9 +1299,9 @@ void classify_curve(const Grid& g, const ScreenScene& ss, int ci, std::vector<P2
 
 }  // namespace
 
-std::vector<VisiblePiece> classify_pieces(const Grid& g, const ScreenScene& ss, Cuts& cuts, int threads, Stats& stats) {
-  // Chunks of consecutive curves, classified in parallel, their pieces joined in
-  // curve order: the same list for every thread count.
+PieceChunks classify_pieces(const Grid& g, const ScreenScene& ss, Cuts& cuts, int threads, Stats& stats) {
+  // Chunks of consecutive curves, classified in parallel; the chunks in order
+  // hold the pieces in curve order, the same for every thread count.
   const int n = static_cast<int>(ss.curves.size()), size = 256;
   std::vector<Classified> chunks(static_cast<std::size_t>(chunk_count(n, size)));
   parallel_for(static_cast<int>(chunks.size()), threads, [&](int k) {
@@ -1247,18 +1311,12 @@ std::vector<VisiblePiece> classify_pieces(const Grid& g, const ScreenScene& ss, 
       if (cuts.needed[static_cast<std::size_t>(ci)])
         classify_curve(g, ss, ci, cuts.at[static_cast<std::size_t>(ci)], covers, chunks[static_cast<std::size_t>(k)]);
   });
-  std::size_t total = 0;
+  PieceChunks out(chunks.size());
   std::int64_t pieces = 0, visible = 0;
-  for (const Classified& c : chunks) {
-    total += c.out.size();
-    pieces += c.pieces;
-    visible += c.visible;
-  }
-  std::vector<VisiblePiece> out;
-  out.reserve(total);
-  for (Classified& c : chunks) {
-    std::move(c.out.begin(), c.out.end(), std::back_inserter(out));
-    std::vector<VisiblePiece>().swap(c.out);
+  for (std::size_t k = 0; k < chunks.size(); ++k) {
+    pieces += chunks[k].pieces;
+    visible += chunks[k].visible;
+    out[k] = std::move(chunks[k].out);
   }
   stats.count("pieces", pieces);
   stats.count("visible_pieces", visible);

@@ -51,10 +51,10 @@ struct VisiblePiece {
 };
 
 Grid make_grid(const ScreenScene& ss, double c, Stats& stats);                    // steps 2-4
-void bucket_facets(Grid& g, ScreenScene& ss, Stats& stats);                       // step 5
-void prune_facets(Grid& g, const ScreenScene& ss, Stats& stats);                  // step 6
+void bucket_facets(Grid& g, ScreenScene& ss, int threads, Stats& stats);                       // step 5
+void prune_facets(Grid& g, const ScreenScene& ss, int threads, Stats& stats);                  // step 6
 void add_intersection_lines(const Grid& g, ScreenScene& ss, int threads, Stats& stats);   // faces piercing each other
-void bucket_curves(Grid& g, const ScreenScene& ss, bool regions, Stats& stats);   // step 7
+void bucket_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats& stats);   // step 7
 // Step 8's cut points per curve, and which curves the map needs (all of them,
 // unless only the drawn lines are wanted).
 struct Cuts {
@@ -62,8 +62,10 @@ struct Cuts {
   std::vector<char> needed;
 };
 Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats& stats);        // step 8
-std::vector<VisiblePiece> classify_pieces(const Grid& g, const ScreenScene& ss, Cuts& cuts, int threads,
-                                          Stats& stats);                                        // steps 9, 11
+// Steps 9 and 11's pieces in curve order, in chunks (one list per chunk of curves
+// the threads classified: joined, they would be one more copy at the peak).
+using PieceChunks = std::vector<std::vector<VisiblePiece>>;
+PieceChunks classify_pieces(const Grid& g, const ScreenScene& ss, Cuts& cuts, int threads, Stats& stats);  // steps 9, 11
 
 VISMAP_KERNEL_END
 }  // namespace vismap::engine

@@ -440,10 +440,9 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   auto spanning_of = [&](int fi) { return spanning_corners(scene, wf.facets[fi]); };
 
   const double cos_crease = std::cos(opt.crease_deg * M_PI / 180);
-  // The curve of edge piece wp, into `out`, unless it is dropped (counted in `dropped`).
-  auto make_curve = [&](const WorldPiece& wp, std::vector<Curve>& out, std::array<std::int64_t, 3>& dropped) {
+  // The curve of edge piece wp, made in c; false if it is dropped (counted in `dropped`).
+  auto make_curve = [&](const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3>& dropped) {
     std::int64_t &dropped_hidden = dropped[0], &dropped_clipped = dropped[1], &dropped_point = dropped[2];
-    Curve c;
     bool any_occluder = false;
     for (const Sharer& s : wp.sharers) {
       c.sharers.push_back(s.facet);
@@ -455,7 +454,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     }
     // Every facet sharing it is a culled back face: hidden (or coincident with a
     // nearer visible line on screen), so it cannot change the map.
-    if (!any_occluder) { ++dropped_hidden; return; }
+    if (!any_occluder) { ++dropped_hidden; return false; }
     std::sort(c.faces.begin(), c.faces.end());
     c.faces.erase(std::unique(c.faces.begin(), c.faces.end()), c.faces.end());
     // Kind, from the faces sharing the piece.
@@ -483,35 +482,41 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     // Clip at the near plane, project.
     std::uint32_t a = wp.a, b = wp.b;
     const bool fa = in_front(a), fb = in_front(b);
-    if (!fa && !fb) { ++dropped_clipped; return; }
+    if (!fa && !fb) { ++dropped_clipped; return false; }
     c.s = fa ? image(a) : clip_point(b, a);
     c.t = fb ? image(b) : clip_point(a, b);
     c.vs = fa ? static_cast<long>(a) : -1;
     c.vt = fb ? static_cast<long>(b) : -1;
-    if (c.s.xy() == c.t.xy()) { ++dropped_point; return; }   // seen end-on
+    if (c.s.xy() == c.t.xy()) { ++dropped_point; return false; }   // seen end-on
     c.box = box_of(c.s) + box_of(c.t);
-    out.push_back(std::move(c));
+    return true;
   };
-  // Chunks of pieces in parallel; their curves appended in piece order.
-  struct Made {
-    std::vector<Curve> curves;
-    std::array<std::int64_t, 3> dropped{};
-  };
+  // Each piece's curve made in its own slot (chunks of pieces in parallel), then
+  // the kept ones moved down in order: no second copy of the curves at the peak.
   const int np = static_cast<int>(pieces.size());
-  std::vector<Made> made(static_cast<std::size_t>(chunk_count(np, 1024)));
-  parallel_for(static_cast<int>(made.size()), threads, [&](int k) {
-    const Chunk r = chunk(k, np, 1024);
-    Made& m = made[static_cast<std::size_t>(k)];
-    for (int i = r.begin; i < r.end; ++i) make_curve(pieces[static_cast<std::size_t>(i)], m.curves, m.dropped);
-  });
-  std::int64_t dropped_hidden = 0, dropped_clipped = 0, dropped_point = 0;
   ss.curves.reserve(pieces.size() + ss.facets.size() / 8);   // (+ near-plane cuts; + intersection lines later)
-  for (Made& m : made) {
-    dropped_hidden += m.dropped[0];
-    dropped_clipped += m.dropped[1];
-    dropped_point += m.dropped[2];
-    std::move(m.curves.begin(), m.curves.end(), std::back_inserter(ss.curves));
-    std::vector<Curve>().swap(m.curves);
+  ss.curves.resize(pieces.size());
+  std::vector<char> kept(pieces.size(), 0);
+  std::vector<std::array<std::int64_t, 3>> dropped(static_cast<std::size_t>(chunk_count(np, 1024)));
+  parallel_for(static_cast<int>(dropped.size()), threads, [&](int k) {
+    const Chunk r = chunk(k, np, 1024);
+    for (int i = r.begin; i < r.end; ++i) {
+      const auto at = static_cast<std::size_t>(i);
+      kept[at] = make_curve(pieces[at], ss.curves[at], dropped[static_cast<std::size_t>(k)]);
+    }
+  });
+  std::size_t made = 0;
+  for (std::size_t i = 0; i < pieces.size(); ++i)
+    if (kept[i]) {
+      if (made != i) ss.curves[made] = std::move(ss.curves[i]);
+      ++made;
+    }
+  ss.curves.erase(ss.curves.begin() + static_cast<std::ptrdiff_t>(made), ss.curves.end());
+  std::int64_t dropped_hidden = 0, dropped_clipped = 0, dropped_point = 0;
+  for (const auto& d : dropped) {
+    dropped_hidden += d[0];
+    dropped_clipped += d[1];
+    dropped_point += d[2];
   }
   // The near-plane cut of a facet bounds its region but is never drawn.
   for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) {
