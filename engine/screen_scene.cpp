@@ -491,27 +491,28 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     c.box = box_of(c.s) + box_of(c.t);
     return true;
   };
-  // Each piece's curve made in its own slot (chunks of pieces in parallel), then
-  // the kept ones moved down in order: no second copy of the curves at the peak.
-  const int np = static_cast<int>(pieces.size());
+  // Chunks of pieces in parallel, a wave of chunks at a time; each wave's curves
+  // are appended in piece order before the next: the curves are never held
+  // twice (curves made in place instead would be default-made first, and their
+  // placeholder numbers, one shared object, then released by every thread at once).
+  const int np = static_cast<int>(pieces.size()), size = 1024, wave = 64;
   ss.curves.reserve(pieces.size() + ss.facets.size() / 8);   // (+ near-plane cuts; + intersection lines later)
-  ss.curves.resize(pieces.size());
-  std::vector<char> kept(pieces.size(), 0);
-  std::vector<std::array<std::int64_t, 3>> dropped(static_cast<std::size_t>(chunk_count(np, 1024)));
-  parallel_for(static_cast<int>(dropped.size()), threads, [&](int k) {
-    const Chunk r = chunk(k, np, 1024);
-    for (int i = r.begin; i < r.end; ++i) {
-      const auto at = static_cast<std::size_t>(i);
-      kept[at] = make_curve(pieces[at], ss.curves[at], dropped[static_cast<std::size_t>(k)]);
-    }
-  });
-  std::size_t made = 0;
-  for (std::size_t i = 0; i < pieces.size(); ++i)
-    if (kept[i]) {
-      if (made != i) ss.curves[made] = std::move(ss.curves[i]);
-      ++made;
-    }
-  ss.curves.erase(ss.curves.begin() + static_cast<std::ptrdiff_t>(made), ss.curves.end());
+  std::vector<std::array<std::int64_t, 3>> dropped(static_cast<std::size_t>(chunk_count(np, size)));
+  for (int w = 0; w < static_cast<int>(dropped.size()); w += wave) {
+    std::vector<std::vector<Curve>> made(static_cast<std::size_t>(std::min(wave, static_cast<int>(dropped.size()) - w)));
+    parallel_for(static_cast<int>(made.size()), threads, [&](int j) {
+      const int k = w + j;
+      const Chunk r = chunk(k, np, size);
+      std::vector<Curve>& out = made[static_cast<std::size_t>(j)];
+      out.reserve(static_cast<std::size_t>(r.end - r.begin));
+      for (int i = r.begin; i < r.end; ++i) {
+        Curve c;
+        if (make_curve(pieces[static_cast<std::size_t>(i)], c, dropped[static_cast<std::size_t>(k)]))
+          out.push_back(std::move(c));
+      }
+    });
+    for (std::vector<Curve>& m : made) std::move(m.begin(), m.end(), std::back_inserter(ss.curves));
+  }
   std::int64_t dropped_hidden = 0, dropped_clipped = 0, dropped_point = 0;
   for (const auto& d : dropped) {
     dropped_hidden += d[0];
