@@ -12,6 +12,7 @@
 #include <string>
 
 #include "arrangements/map_graph.h"
+#include "engine/parallel.h"
 
 namespace vismap {
 VISMAP_KERNEL_BEGIN
@@ -26,7 +27,7 @@ using namespace exact;
 const CGAL::Simple_cartesian<Interval>::Point_2& approx_point(const P2& p) { return p.approx(); }
 
 // Vertices: the distinct end points, numbered in lexicographic order.
-std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph& g) {
+std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph& g, int threads) {
   struct End {
     Interval x;   // sorts most pairs without touching the point
     const P2* p;
@@ -45,7 +46,15 @@ std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph
     if (exact::same_rep(*a.p, *b.p)) return CGAL::EQUAL;
     return CGAL::compare_xy(*a.p, *b.p);
   };
-  std::sort(ends.begin(), ends.end(), [&](const End& a, const End& b) { return compare(a, b) == CGAL::SMALLER; });
+  // Equal points in the order of their pieces: the same order for every thread
+  // count. How many comparisons a parallel sort makes depends on the thread count,
+  // so its predicates are not counted (the stats must not depend on it either).
+  const FilterCounts before_sort = filter_counts;
+  engine::parallel_sort(ends.begin(), ends.end(), [&](const End& a, const End& b) {
+    const CGAL::Comparison_result c = compare(a, b);
+    return c == CGAL::SMALLER || (c == CGAL::EQUAL && a.at < b.at);
+  }, threads);
+  filter_counts = before_sort;
   std::vector<int> vertex_of(ends.size());
   for (std::size_t k = 0; k < ends.size(); ++k) {
     if (k == 0 || compare(ends[k - 1], ends[k]) != CGAL::EQUAL) g.add_point(*ends[k].p);
@@ -282,8 +291,8 @@ int face_below(const Assembly& a, const Columns& cols, int w) {
 }
 
 // Edges: pieces from the smaller end, those on the same two vertices merged.
-void add_edges(std::vector<MapPiece>& pieces, MapGraph& g) {
-  std::vector<int> vertex_of = number_end_points(pieces, g);
+void add_edges(std::vector<MapPiece>& pieces, MapGraph& g, int threads) {
+  std::vector<int> vertex_of = number_end_points(pieces, g, threads);
   std::vector<int> order(pieces.size());
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     MapPiece& m = pieces[i];
@@ -293,7 +302,8 @@ void add_edges(std::vector<MapPiece>& pieces, MapGraph& g) {
     order[i] = static_cast<int>(i);
   }
   auto key = [&](int i) { return std::pair(vertex_of[2 * i], vertex_of[2 * i + 1]); };
-  std::sort(order.begin(), order.end(), [&](int i, int j) { return key(i) < key(j); });
+  engine::parallel_sort(order.begin(), order.end(), [&](int i, int j) { return std::pair(key(i), i) < std::pair(key(j), j); },
+                        threads);
   for (std::size_t k = 0; k < order.size();) {
     std::size_t l = k + 1;
     while (l < order.size() && key(order[l]) == key(order[k])) ++l;
@@ -306,15 +316,15 @@ void add_edges(std::vector<MapPiece>& pieces, MapGraph& g) {
 
 }  // namespace
 
-void assemble_segments(std::vector<MapPiece>& pieces, VisibilityMap& map) {
+void assemble_segments(std::vector<MapPiece>& pieces, VisibilityMap& map, int threads) {
   MapGraph g;
-  add_edges(pieces, g);
+  add_edges(pieces, g, threads);
   write_segments_only(g, map);
 }
 
-void assemble_map(std::vector<MapPiece>& pieces, VisibilityMap& map) {
+void assemble_map(std::vector<MapPiece>& pieces, VisibilityMap& map, int threads) {
   MapGraph g;
-  add_edges(pieces, g);
+  add_edges(pieces, g, threads);
 
   Assembly a{g};
   a.sort_around_vertices();

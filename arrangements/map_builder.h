@@ -32,12 +32,13 @@ void build_map(std::vector<MapPiece>& pieces, VisibilityMap& map);
 // or partly overlaps another; pieces on the same two end points are merged),
 // without a sweep: Franklin's pieces, which step 8 cut at every crossing. Throws
 // std::logic_error where the pieces break that promise in a way it detects.
-void assemble_map(std::vector<MapPiece>& pieces, VisibilityMap& map);
+// Its sorts run on `threads` threads; the map is the same for every count.
+void assemble_map(std::vector<MapPiece>& pieces, VisibilityMap& map, int threads = 1);
 
 // The segments of that map alone (map.has_regions false), from the drawn pieces
 // and the pieces of every curve that meets a drawn one (visible or bounding a
 // region), cut as assemble_map wants them; other pieces are not needed.
-void assemble_segments(std::vector<MapPiece>& pieces, VisibilityMap& map);
+void assemble_segments(std::vector<MapPiece>& pieces, VisibilityMap& map, int threads = 1);
 
 VISMAP_KERNEL_END
 

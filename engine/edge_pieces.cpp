@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "engine/parallel.h"
+
 namespace vismap::engine {
 namespace {
 
@@ -112,7 +114,7 @@ bool cells_from_intervals(const Vec3& p, const Vec3& q, int k, const Cells& cell
 
 }  // namespace
 
-std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, int cell_bits) {
+std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, int cell_bits, int threads) {
   const Cells cells(cell_bits);
   std::vector<Edge> edges;
   for (int f = 0; f < static_cast<int>(wf.facets.size()); ++f) {
@@ -152,11 +154,11 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
       slots[i] = Slot{h, std::uint64_t(lo) << 32 | hi, i, e};
     }
   }
-  std::sort(slots.begin(), slots.end(), [](const Slot& x, const Slot& y) {
+  engine::parallel_sort(slots.begin(), slots.end(), [](const Slot& x, const Slot& y) {
     if (x.hash != y.hash) return x.hash < y.hash;
     if (x.pair != y.pair) return x.pair < y.pair;
-    return x.edge < y.edge;
-  });
+    return x.edge < y.edge;   // (a total order: the same for every thread count)
+  }, threads);
 
   std::vector<WorldPiece> pieces;
   pieces.reserve(edges.size() * 3 / 5);

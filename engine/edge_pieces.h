@@ -23,6 +23,7 @@ struct WorldPiece {
 // Pieces in the order of their first sharing facet (then deterministic). cell_bits sets how finely lines
 // are told apart before exact keys decide (see edge_pieces.cpp); any value gives
 // the same pieces, only the work differs (tests vary it to reach every path).
-std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, int cell_bits = 20);
+std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, int cell_bits = 20,
+                                    int threads = 1);
 
 }  // namespace vismap::engine

@@ -88,8 +88,8 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   }
   PieceChunks().swap(pieces);
   std::vector<Facet>().swap(ss.facets);
-  if (opt.regions) assemble_map(mp, map);
-  else assemble_segments(mp, map);
+  if (opt.regions) assemble_map(mp, map, threads);
+  else assemble_segments(mp, map, threads);
 #endif
   unscale_map(map, ss.scale_exp);
   st.time("arrangement", clock.lap());

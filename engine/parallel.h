@@ -79,6 +79,27 @@ void parallel_for(int n, int threads, Body&& body) {
   for (int i = 0; i < n; ++i) body(i);
 }
 
+// Sorts [first, last) by `less` on `threads` threads: runs sorted in parallel,
+// then merged pairwise (the pairs of a round in parallel). For a strict total
+// order (no two elements equivalent) the result is std::sort's, for every thread
+// count; callers whose order has ties break them (by position, say).
+template <class It, class Less>
+void parallel_sort(It first, It last, Less less, int threads) {
+  const auto n = last - first;
+  int runs = 1;
+  while (runs * 2 <= threads && n / (runs * 2) >= 8192) runs *= 2;
+  if (runs == 1) {
+    std::sort(first, last, less);
+    return;
+  }
+  auto bound = [&](int k) { return first + n * k / runs; };
+  parallel_for(runs, threads, [&](int k) { std::sort(bound(k), bound(k + 1), less); });
+  for (int width = 1; width < runs; width *= 2)
+    parallel_for(runs / (2 * width), threads, [&](int p) {
+      std::inplace_merge(bound(2 * p * width), bound((2 * p + 1) * width), bound((2 * p + 2) * width), less);
+    });
+}
+
 // [begin, end) of chunk k when n items are cut into chunks of `size`.
 struct Chunk {
   int begin, end;

@@ -232,7 +232,8 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
                               Stats& stats) {
   WorldFacets wf = make_world_facets(scene);
   order_on_screen(wf, scene, view);
-  std::vector<WorldPiece> pieces = match_edges(scene, wf);
+  const int threads = thread_count(opt.threads);
+  std::vector<WorldPiece> pieces = match_edges(scene, wf, 20, threads);
   stats.count("faces_degenerate_dropped", wf.degenerate);
   stats.count("faces_nonplanar_fanned", wf.nonplanar);
   stats.count("faces_nonconvex_triangulated", wf.nonconvex);
@@ -256,7 +257,6 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   std::vector<std::int8_t> zsign(used.size(), 1);   // sign of Z (perspective): the near plane is Z = 0
   // Input vertices: exact values that no rational arithmetic is done for unless
   // a predicate needs them (engine/lazy_leaves.h). In parallel, chunks of them.
-  const int threads = thread_count(opt.threads);
   const int nu = static_cast<int>(used.size());
   auto project_vertex = [&](std::uint32_t u) {
     const Vec3& p = scene.vertices[used[u]];
