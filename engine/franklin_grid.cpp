@@ -1183,117 +1183,115 @@ struct Classified {
 // Steps 9 and 11 for curve ci, cut at pts (sorted here).
 void classify_curve(const Grid& g, const ScreenScene& ss, int ci, std::vector<P2>& pts, std::vector<Cover>& covers,
                     Classified& res) {
+  const Curve& cv = ss.curves[ci];
+  const P2 &s = cv.s.xy(), &t = cv.t.xy();
+  // 9a: sort along the curve (the order of the dominant coordinate): |dx| >= |dy|,
+  // decided on the end points' numbers (no lazy coordinate or difference built).
+  const bool use_x = filtered_sign(
+                         [&] {
+                           return CGAL::abs(approx_of(cv.t.x) - approx_of(cv.s.x)) -
+                                  CGAL::abs(approx_of(cv.t.y) - approx_of(cv.s.y));
+                         },
+                         [&]() -> mpq_class {
+                           return abs(mpq_class(to_mpq(cv.t.x) - to_mpq(cv.s.x))) -
+                                  abs(mpq_class(to_mpq(cv.t.y) - to_mpq(cv.s.y)));
+                         }) != CGAL::NEGATIVE;
+  const bool increasing = (use_x ? CGAL::compare(cv.s.x, cv.t.x) : CGAL::compare(cv.s.y, cv.t.y)) == CGAL::SMALLER;
+  auto key_less = [&](const P2& a, const P2& b) {   // predicates: no coordinates built
+    return (use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b)) == (increasing ? CGAL::SMALLER : CGAL::LARGER);
+  };
+  std::sort(pts.begin(), pts.end(), key_less);
+  // Points of one curve are equal when their dominant coordinates are.
+  auto same_key = [&](const P2& a, const P2& b) {
+    return (use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b)) == CGAL::EQUAL;
+  };
+  pts.erase(std::unique(pts.begin(), pts.end(), same_key), pts.end());
+  pts.insert(pts.begin(), s);
+  pts.push_back(t);
+  Probe probe;
+  probe.s = &cv.s;
+  probe.t = &cv.t;
   {
-    const Curve& cv = ss.curves[ci];
-    const P2 &s = cv.s.xy(), &t = cv.t.xy();
-    // 9a: sort along the curve (the order of the dominant coordinate): |dx| >= |dy|,
-    // decided on the end points' numbers (no lazy coordinate or difference built).
-    const bool use_x = filtered_sign(
-                           [&] {
-                             return CGAL::abs(approx_of(cv.t.x) - approx_of(cv.s.x)) -
-                                    CGAL::abs(approx_of(cv.t.y) - approx_of(cv.s.y));
-                           },
-                           [&]() -> mpq_class {
-                             return abs(mpq_class(to_mpq(cv.t.x) - to_mpq(cv.s.x))) -
-                                    abs(mpq_class(to_mpq(cv.t.y) - to_mpq(cv.s.y)));
-                           }) != CGAL::NEGATIVE;
-    const bool increasing = (use_x ? CGAL::compare(cv.s.x, cv.t.x) : CGAL::compare(cv.s.y, cv.t.y)) == CGAL::SMALLER;
-    auto key_less = [&](const P2& a, const P2& b) {   // predicates: no coordinates built
-      return (use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b)) == (increasing ? CGAL::SMALLER : CGAL::LARGER);
+    CGAL::Protect_FPU_rounding<true> upward;
+    probe.idx = approx_of(cv.t.x) - approx_of(cv.s.x);
+    probe.idy = approx_of(cv.t.y) - approx_of(cv.s.y);
+  }
+  probe.x_moves = probe.idx.inf() > 0 || probe.idx.sup() < 0 || CGAL::compare_x(s, t) != CGAL::EQUAL;
+  UpwardRounding upward;   // the loop calls only our own filtered predicates
+  for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+    ++res.pieces;
+    probe.at_midpoint(pts[k], pts[k + 1]);
+    const Cell& cell = g.at(cell_index_of(g.X, probe.ix, [&] { probe.need_exact(); return probe.ex; }),
+                      cell_index_of(g.Y, probe.iy, [&] { probe.need_exact(); return probe.ey; }));
+    covers.clear();
+    const CGAL::Bbox_2 mbox(probe.ix.inf(), probe.iy.inf(), probe.ix.sup(), probe.iy.sup());
+    // A facet of another face covering both sides of m strictly in front of
+    // the curve hides the piece, and no facet holding the curve (at the
+    // curve's depth) can then be nearest on either side: the piece is neither
+    // drawn nor a region boundary, and the rest of its cell need not be seen.
+    auto hides = [&](int fi, const Cover& c) {
+      return c.left && c.right && !std::binary_search(cv.faces.begin(), cv.faces.end(), ss.facets[fi].face) &&
+             depth_against_curve(ss.facets[fi], probe) == CGAL::NEGATIVE;
     };
-    std::sort(pts.begin(), pts.end(), key_less);
-    // Points of one curve are equal when their dominant coordinates are.
-    auto same_key = [&](const P2& a, const P2& b) {
-      return (use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b)) == CGAL::EQUAL;
+    auto consider = [&](int fi) {   // true: fi hides the piece
+      if (!CGAL::do_overlap(mbox, ss.facets[fi].box)) return false;   // cheap: cannot cover m
+      int own = -1;
+      for (std::size_t j = 0; j < cv.sharers.size(); ++j)
+        if (cv.sharers[j] == fi) own = cv.sharer_edge[j];
+      Cover c;
+      if (!cover_at(ss.facets[fi], probe, c, own)) return false;
+      c.facet = fi;
+      covers.push_back(c);
+      return hides(fi, c);
     };
-    pts.erase(std::unique(pts.begin(), pts.end(), same_key), pts.end());
-    pts.insert(pts.begin(), s);
-    pts.push_back(t);
-    Probe probe;
-    probe.s = &cv.s;
-    probe.t = &cv.t;
-    {
-      CGAL::Protect_FPU_rounding<true> upward;
-      probe.idx = approx_of(cv.t.x) - approx_of(cv.s.x);
-      probe.idy = approx_of(cv.t.y) - approx_of(cv.s.y);
+    bool hidden = false;
+    for (int fi : cell.facets)
+      if ((hidden = consider(fi))) break;
+    if (!hidden && cell.blocker >= 0) hidden = consider(cell.blocker);
+    if (hidden) continue;
+    // Nearest face on each side (step 11).
+    int bl = -1, br = -1;
+    for (std::size_t i = 0; i < covers.size(); ++i) {
+      const Facet& f = ss.facets[covers[i].facet];
+      if (covers[i].left && (bl < 0 || before(f, ss.facets[covers[bl].facet], probe, true))) bl = static_cast<int>(i);
+      if (covers[i].right && (br < 0 || before(f, ss.facets[covers[br].facet], probe, false))) br = static_cast<int>(i);
     }
-    probe.x_moves = probe.idx.inf() > 0 || probe.idx.sup() < 0 || CGAL::compare_x(s, t) != CGAL::EQUAL;
-    UpwardRounding upward;   // the loop calls only our own filtered predicates
-    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
-      ++res.pieces;
-      probe.at_midpoint(pts[k], pts[k + 1]);
-      const Cell& cell = g.at(cell_index_of(g.X, probe.ix, [&] { probe.need_exact(); return probe.ex; }),
-                        cell_index_of(g.Y, probe.iy, [&] { probe.need_exact(); return probe.ey; }));
-      covers.clear();
-      const CGAL::Bbox_2 mbox(probe.ix.inf(), probe.iy.inf(), probe.ix.sup(), probe.iy.sup());
-      // A facet of another face covering both sides of m strictly in front of
-      // the curve hides the piece, and no facet holding the curve (at the
-      // curve's depth) can then be nearest on either side: the piece is neither
-      // drawn nor a region boundary, and the rest of its cell need not be seen.
-      auto hides = [&](int fi, const Cover& c) {
-        return c.left && c.right && !std::binary_search(cv.faces.begin(), cv.faces.end(), ss.facets[fi].face) &&
-               depth_against_curve(ss.facets[fi], probe) == CGAL::NEGATIVE;
+    VisiblePiece vp;
+    vp.a = pts[k];
+    vp.b = pts[k + 1];
+    vp.curve = ci;
+    vp.left = bl < 0 ? -1 : ss.facets[covers[bl].facet].face;
+    vp.right = br < 0 ? -1 : ss.facets[covers[br].facet].face;
+    if (vp.left != vp.right) {
+      auto responsible = [&](int i) {
+        return i >= 0 && std::find(cv.sharers.begin(), cv.sharers.end(), covers[i].facet) != cv.sharers.end();
       };
-      auto consider = [&](int fi) {   // true: fi hides the piece
-        if (!CGAL::do_overlap(mbox, ss.facets[fi].box)) return false;   // cheap: cannot cover m
-        int own = -1;
-        for (std::size_t j = 0; j < cv.sharers.size(); ++j)
-          if (cv.sharers[j] == fi) own = cv.sharer_edge[j];
-        Cover c;
-        if (!cover_at(ss.facets[fi], probe, c, own)) return false;
-        c.facet = fi;
-        covers.push_back(c);
-        return hides(fi, c);
-      };
-      bool hidden = false;
-      for (int fi : cell.facets)
-        if ((hidden = consider(fi))) break;
-      if (!hidden && cell.blocker >= 0) hidden = consider(cell.blocker);
-      if (hidden) continue;
-      // Nearest face on each side (step 11).
-      int bl = -1, br = -1;
-      for (std::size_t i = 0; i < covers.size(); ++i) {
-        const Facet& f = ss.facets[covers[i].facet];
-        if (covers[i].left && (bl < 0 || before(f, ss.facets[covers[bl].facet], probe, true))) bl = static_cast<int>(i);
-        if (covers[i].right && (br < 0 || before(f, ss.facets[covers[br].facet], probe, false))) br = static_cast<int>(i);
-      }
-      VisiblePiece vp;
-      vp.a = pts[k];
-      vp.b = pts[k + 1];
-      vp.curve = ci;
-      vp.left = bl < 0 ? -1 : ss.facets[covers[bl].facet].face;
-      vp.right = br < 0 ? -1 : ss.facets[covers[br].facet].face;
-      if (vp.left != vp.right) {
-        auto responsible = [&](int i) {
-          return i >= 0 && std::find(cv.sharers.begin(), cv.sharers.end(), covers[i].facet) != cv.sharers.end();
-        };
-        vp.boundary = cv.kind == EdgeKind::Intersection && cv.drawn ? (responsible(bl) && responsible(br))
-                                                                     : (responsible(bl) || responsible(br));
-      }
-      // 9c: visible unless a face not sharing the curve covers both sides of m and
-      // comes before it in (depth, face index). Edge pieces that are not drawn
-      // (smooth) too: where lines coincide, the first visible one decides.
-      if (!cv.faces.empty()) {
-        vp.visible = true;
-        for (std::size_t i = 0; i < covers.size() && vp.visible; ++i) {
-          const int face = ss.facets[covers[i].facet].face;
-          if (std::binary_search(cv.faces.begin(), cv.faces.end(), face)) continue;
-          auto c = depth_against_curve(ss.facets[covers[i].facet], probe);
-          if (!(c == CGAL::NEGATIVE || (c == CGAL::ZERO && face < cv.order_face))) continue;
-          bool both = covers[i].left && covers[i].right;
-          // Two facets of one (fanned) polygon covering the two sides hide it only
-          // where they meet at m: the same depth there. A facet of that polygon
-          // further back, a fold's other layer, does not continue this one.
-          for (std::size_t j = 0; j < covers.size() && !both; ++j)
-            if (j != i && ss.facets[covers[j].facet].face == face &&
-                (covers[i].left || covers[j].left) && (covers[i].right || covers[j].right))
-              both = depth_order(ss.facets[covers[i].facet], ss.facets[covers[j].facet], probe) == CGAL::ZERO;
-          if (both) vp.visible = false;
-        }
-      }
-      res.visible += vp.visible && cv.drawn;
-      if (vp.visible || vp.boundary) res.out.push_back(std::move(vp));
+      vp.boundary = cv.kind == EdgeKind::Intersection && cv.drawn ? (responsible(bl) && responsible(br))
+                                                                   : (responsible(bl) || responsible(br));
     }
+    // 9c: visible unless a face not sharing the curve covers both sides of m and
+    // comes before it in (depth, face index). Edge pieces that are not drawn
+    // (smooth) too: where lines coincide, the first visible one decides.
+    if (!cv.faces.empty()) {
+      vp.visible = true;
+      for (std::size_t i = 0; i < covers.size() && vp.visible; ++i) {
+        const int face = ss.facets[covers[i].facet].face;
+        if (std::binary_search(cv.faces.begin(), cv.faces.end(), face)) continue;
+        auto c = depth_against_curve(ss.facets[covers[i].facet], probe);
+        if (!(c == CGAL::NEGATIVE || (c == CGAL::ZERO && face < cv.order_face))) continue;
+        bool both = covers[i].left && covers[i].right;
+        // Two facets of one (fanned) polygon covering the two sides hide it only
+        // where they meet at m: the same depth there. A facet of that polygon
+        // further back, a fold's other layer, does not continue this one.
+        for (std::size_t j = 0; j < covers.size() && !both; ++j)
+          if (j != i && ss.facets[covers[j].facet].face == face &&
+              (covers[i].left || covers[j].left) && (covers[i].right || covers[j].right))
+            both = depth_order(ss.facets[covers[i].facet], ss.facets[covers[j].facet], probe) == CGAL::ZERO;
+        if (both) vp.visible = false;
+      }
+    }
+    res.visible += vp.visible && cv.drawn;
+    if (vp.visible || vp.boundary) res.out.push_back(std::move(vp));
   }
 }
 

@@ -26,15 +26,13 @@
 
 namespace vismap::engine {
 
-// The number of threads a loop uses: `asked` if positive, else every core.
-inline int thread_count(int asked) {
-  if (asked > 0) return asked;
-#ifdef _OPENMP
-  return std::max(1, omp_get_num_procs());
-#else
-  return 1;
-#endif
-}
+// The cores this process may use: those it may run on, fewer where a cgroup's
+// CPU quota (a container's --cpus) allows less (more threads than that would
+// only wait for each other).
+int usable_cores();
+
+// The number of threads a loop uses: `asked` if positive, else every usable core.
+inline int thread_count(int asked) { return asked > 0 ? asked : usable_cores(); }
 
 // body(i) for every i in [0, n), on `threads` threads, scheduled dynamically
 // (cells and curves differ widely in work). The first exception a body throws is

@@ -233,7 +233,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   WorldFacets wf = make_world_facets(scene);
   order_on_screen(wf, scene, view);
   const int threads = thread_count(opt.threads);
-  std::vector<WorldPiece> pieces = match_edges(scene, wf, 20, threads);
+  std::vector<WorldPiece> pieces = match_edges(scene, wf, /*cell_bits=*/20, threads);
   stats.count("faces_degenerate_dropped", wf.degenerate);
   stats.count("faces_nonplanar_fanned", wf.nonplanar);
   stats.count("faces_nonconvex_triangulated", wf.nonconvex);
@@ -392,8 +392,8 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   };
   parallel_for(static_cast<int>(culled.size()), threads, [&](int c) {
     const Chunk r = chunk(c, nf, 512);
-    for (int fi = r.begin; fi < r.end; ++fi)
-      project_facet(static_cast<std::size_t>(fi), culled[static_cast<std::size_t>(c)][0], culled[static_cast<std::size_t>(c)][1]);
+    auto& [outside, edge_on] = culled[static_cast<std::size_t>(c)];
+    for (int fi = r.begin; fi < r.end; ++fi) project_facet(static_cast<std::size_t>(fi), outside, edge_on);
   });
   std::int64_t outside = 0, edge_on = 0;
   for (const auto& c : culled) {

@@ -179,6 +179,24 @@ void check_pipeline(const std::uint8_t* data, std::size_t size, Engines engines)
       die(why + repro + (strict ? "(with --strict)\n" : ""));
     }
     maps.emplace_back(engine, json);
+    // Franklin on one thread and on three: the same map, byte for byte.
+    if (!newell) {
+      for (int threads : {1, 3}) {
+        vismap::EngineOptions o = t.options;
+        o.threads = threads;
+        std::string again;
+        try {
+          vismap::VisibilityMap map = vismap::visibility_franklin(t.scene, view, o);
+          map.stats = {};
+          again = vismap::to_json(map);
+        } catch (const std::exception& e) {
+          die("the franklin engine threw with --threads " + std::to_string(threads) + ": " + e.what() + repro);
+        }
+        if (again != json)
+          die("--threads " + std::to_string(threads) + " changed the map" + repro + "(compare with --threads " +
+              std::to_string(threads) + ")\n");
+      }
+    }
     // The lines alone (--no-regions): Franklin computes less, and must write the same segments.
     if (!newell) {
       vismap::EngineOptions lines_only = t.options;
