@@ -44,8 +44,9 @@ engine:
   --algorithm A        franklin (default: Franklin's variable grid) or newell
                        (Newell, Newell & Sancha's depth sort with plane
                        splitting); both give the same map
-  --threads N          threads for Franklin's engine (default: every core); the
-                       map is the same for every N
+  --threads N          threads for Franklin's engine (default: every usable core,
+                       one for scenes under 8192 faces); the map is the same
+                       for every N
   --grid-c C           Franklin's grid constant c, B = c*min(sqrt(N),1/L) (default 4)
   --painter FILE       with --algorithm newell: SVG of the ordered, split
                        fragments filled back to front (the painter's drawing)

@@ -22,10 +22,11 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   Stats& st = map.stats;
   const exact::FilterCounts filter_before = exact::filter_counts;
   PhaseClock clock;
-  const int threads = thread_count(opt.threads);
+  EngineOptions run = opt;   // (with the thread count settled, for every step)
+  const int threads = run.threads = thread_count(opt.threads, scene.faces.size());
 
   // 1. Project the scene exactly; skip what cannot be seen (outside, edge-on, back faces).
-  ScreenScene ss = make_screen_scene(scene, view, opt, st);
+  ScreenScene ss = make_screen_scene(scene, view, run, st);
   st.time("project_and_cull", clock.lap());
 
   // (Facets and curves are already in screen order: make_screen_scene.)

@@ -232,7 +232,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
                               Stats& stats) {
   WorldFacets wf = make_world_facets(scene);
   order_on_screen(wf, scene, view);
-  const int threads = thread_count(opt.threads);
+  const int threads = thread_count(opt.threads, scene.faces.size());
   std::vector<WorldPiece> pieces = match_edges(scene, wf, /*cell_bits=*/20, threads);
   stats.count("faces_degenerate_dropped", wf.degenerate);
   stats.count("faces_nonplanar_fanned", wf.nonplanar);

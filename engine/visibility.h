@@ -18,8 +18,8 @@ struct EngineOptions {
   bool regions = true;      // false: the segments alone (a lines-only drawing), computing
                             // only what the drawn lines need; the map has no regions
   Algorithm algorithm = Algorithm::Franklin;   // for callers that dispatch (the CLI)
-  int threads = 0;          // threads Franklin's engine may use (0: every core); the map
-                            // is the same, byte for byte, for every count
+  int threads = 0;          // threads Franklin's engine may use (0: every usable core, one
+                            // below 8192 faces); the map is the same, byte for byte, for every count
 };
 
 // Franklin 1980: variable grid, exact predicates. The main engine.
