@@ -179,40 +179,31 @@ void check_pipeline(const std::uint8_t* data, std::size_t size, Engines engines)
       die(why + repro + (strict ? "(with --strict)\n" : ""));
     }
     maps.emplace_back(engine, json);
-    // Franklin on one thread and on three: the same map, byte for byte.
-    if (!newell) {
-      for (int threads : {1, 3}) {
-        vismap::EngineOptions o = t.options;
-        o.threads = threads;
-        std::string again;
-        try {
-          vismap::VisibilityMap map = vismap::visibility_franklin(t.scene, view, o);
-          map.stats = {};
-          again = vismap::to_json(map);
-        } catch (const std::exception& e) {
-          die("the franklin engine threw with --threads " + std::to_string(threads) + ": " + e.what() + repro);
-        }
-        if (again != json)
-          die("--threads " + std::to_string(threads) + " changed the map" + repro + "(compare with --threads " +
-              std::to_string(threads) + ")\n");
+    if (newell) continue;
+    // Franklin again with one option changed (`flag`, as the CLI spells it): its JSON.
+    auto franklin_with = [&](const vismap::EngineOptions& o, const std::string& flag) {
+      try {
+        vismap::VisibilityMap map = vismap::visibility_franklin(t.scene, view, o);
+        map.stats = {};
+        return vismap::to_json(map);
+      } catch (const std::exception& e) {
+        die("the franklin engine threw with " + flag + ": " + e.what() + repro);
       }
+    };
+    // On one thread and on three: the same map, byte for byte.
+    for (int threads : {1, 3}) {
+      vismap::EngineOptions o = t.options;
+      o.threads = threads;
+      const std::string flag = "--threads " + std::to_string(threads);
+      if (franklin_with(o, flag) != json) die(flag + " changed the map" + repro + "(compare with " + flag + ")\n");
     }
     // The lines alone (--no-regions): Franklin computes less, and must write the same segments.
-    if (!newell) {
-      vismap::EngineOptions lines_only = t.options;
-      lines_only.regions = false;
-      std::string lines;
-      try {
-        vismap::VisibilityMap map = vismap::visibility_franklin(t.scene, view, lines_only);
-        map.stats = {};
-        lines = vismap::to_json(map);
-      } catch (const std::exception& e) {
-        die(std::string("the franklin engine threw with --no-regions: ") + e.what() + repro);
-      }
-      auto segments = [](const std::string& j) { return j.substr(j.find("\"segments\"")); };
-      if (segments(lines) != segments(json))
-        die("--no-regions changed the segments" + repro + "(compare with --no-regions)\n");
-    }
+    vismap::EngineOptions lines_only = t.options;
+    lines_only.regions = false;
+    const std::string lines = franklin_with(lines_only, "--no-regions");
+    auto segments = [](const std::string& j) { return j.substr(j.find("\"segments\"")); };
+    if (segments(lines) != segments(json))
+      die("--no-regions changed the segments" + repro + "(compare with --no-regions)\n");
   }
   if (maps.size() == 2 && maps[0].second != maps[1].second)
     die("the two engines' maps differ (both accepted by the checker)\n--- scene (fuzz.off) ---\n" + to_off(t.scene) +
