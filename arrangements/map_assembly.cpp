@@ -319,7 +319,7 @@ void add_edges(std::vector<MapPiece>& pieces, MapGraph& g, int threads) {
 void assemble_segments(std::vector<MapPiece>& pieces, VisibilityMap& map, int threads) {
   MapGraph g;
   add_edges(pieces, g, threads);
-  write_segments_only(g, map);
+  write_segments_only(g, map, threads);
 }
 
 void assemble_map(std::vector<MapPiece>& pieces, VisibilityMap& map, int threads) {
@@ -369,7 +369,7 @@ void assemble_map(std::vector<MapPiece>& pieces, VisibilityMap& map, int threads
   }
   g.face.resize(a.nhalf);
   for (int h = 0; h < a.nhalf; ++h) g.face[h] = face_of[a.cycle[h]];
-  write_canonical(g, map);
+  write_canonical(g, map, threads);
 }
 
 VISMAP_KERNEL_END

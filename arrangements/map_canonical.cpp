@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "arrangements/map_graph.h"
+#include "engine/parallel.h"
 
 namespace vismap {
 VISMAP_KERNEL_BEGIN
@@ -101,14 +102,24 @@ std::vector<Chain> drawn_chains(const MapGraph& g, const Essential& ess, std::ve
 // The written vertices, once each, numbered in vertex (lexicographic) order;
 // rings and segments refer to them by number, so canonical order is kept.
 // Returns each graph vertex's number in map.vertices.
-std::vector<std::uint32_t> write_vertices(const MapGraph& g, const std::vector<char>& written, VisibilityMap& map) {
+// Their exact values, each in its own slot, in chunks on `threads` threads (most
+// are lazy points evaluated here for the first time).
+std::vector<std::uint32_t> write_vertices(const MapGraph& g, const std::vector<char>& written, VisibilityMap& map,
+                                          int threads) {
   std::vector<std::uint32_t> index(g.points.size(), 0);
-  map.vertices.reserve(static_cast<std::size_t>(std::count(written.begin(), written.end(), 1)));
+  std::vector<int> at;   // the written vertices, in order
   for (std::size_t w = 0; w < g.points.size(); ++w)
     if (written[w]) {
-      index[w] = static_cast<std::uint32_t>(map.vertices.size());
-      map.vertices.push_back(exact_point(g, static_cast<int>(w)));
+      index[w] = static_cast<std::uint32_t>(at.size());
+      at.push_back(static_cast<int>(w));
     }
+  map.vertices.resize(at.size());
+  const int n = static_cast<int>(at.size()), size = 4096;
+  engine::parallel_for(engine::chunk_count(n, size), threads, [&](int k) {
+    const engine::Chunk r = engine::chunk(k, n, size);
+    for (int i = r.begin; i < r.end; ++i)
+      map.vertices[static_cast<std::size_t>(i)] = exact_point(g, at[static_cast<std::size_t>(i)]);
+  });
   return index;
 }
 
@@ -163,7 +174,7 @@ EdgeAttr edge_attr(const std::vector<MapPiece>& pieces, const int* on_edge, std:
   return at;
 }
 
-void write_canonical(const MapGraph& g, VisibilityMap& map) {
+void write_canonical(const MapGraph& g, VisibilityMap& map, int threads) {
   const int nedges = static_cast<int>(g.ends.size());
   const int nhalf = 2 * nedges;
   const int nverts = static_cast<int>(g.points.size());
@@ -249,7 +260,7 @@ void write_canonical(const MapGraph& g, VisibilityMap& map) {
     return a.outer < b.outer;
   });
   std::vector<Chain> chains = drawn_chains(g, ess, written);
-  const std::vector<std::uint32_t> index = write_vertices(g, written, map);
+  const std::vector<std::uint32_t> index = write_vertices(g, written, map, threads);
   auto ring_of = [&](const std::vector<int>& ids) {
     Ring out;
     out.reserve(ids.size());
@@ -268,10 +279,10 @@ void write_canonical(const MapGraph& g, VisibilityMap& map) {
   write_segments(g, std::move(chains), index, map);
 }
 
-void write_segments_only(const MapGraph& g, VisibilityMap& map) {
+void write_segments_only(const MapGraph& g, VisibilityMap& map, int threads) {
   std::vector<char> written(g.points.size(), 0);
   const std::vector<Chain> chains = drawn_chains(g, essential_vertices(g), written);
-  write_segments(g, chains, write_vertices(g, written, map), map);
+  write_segments(g, chains, write_vertices(g, written, map, threads), map);
   map.has_regions = false;
 }
 

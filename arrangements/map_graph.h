@@ -58,13 +58,13 @@ struct MapGraph {
 
 // Labels the faces (throws std::logic_error where the halfedges disagree: an
 // engine bug), drops superfluous vertices, and writes the regions and segments
-// into `map` in canonical order.
-void write_canonical(const MapGraph& g, VisibilityMap& map);
+// into `map` in canonical order; the vertices' exact values on `threads` threads.
+void write_canonical(const MapGraph& g, VisibilityMap& map, int threads = 1);
 
 // The segments alone (no regions; map.has_regions false), as write_canonical
 // writes them, from a graph that holds the drawn edges and every edge that
 // bounds a region where it meets them: the faces' labels beyond are not needed.
-void write_segments_only(const MapGraph& g, VisibilityMap& map);
+void write_segments_only(const MapGraph& g, VisibilityMap& map, int threads = 1);
 
 VISMAP_KERNEL_END
 }  // namespace vismap
