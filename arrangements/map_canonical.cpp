@@ -115,8 +115,7 @@ std::vector<std::uint32_t> write_vertices(const MapGraph& g, const std::vector<c
     }
   map.vertices.resize(at.size());
   const int n = static_cast<int>(at.size()), size = 4096;
-  engine::parallel_for(engine::chunk_count(n, size), threads, [&](int k) {
-    const engine::Chunk r = engine::chunk(k, n, size);
+  engine::parallel_chunks(n, size, threads, [&](int, engine::Chunk r) {
     for (int i = r.begin; i < r.end; ++i)
       map.vertices[static_cast<std::size_t>(i)] = exact_point(g, at[static_cast<std::size_t>(i)]);
   });

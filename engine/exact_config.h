@@ -4,9 +4,10 @@
 //
 // 1. Thread-safe (CGAL_HAS_THREADS, CGAL's default): Franklin's engine runs loops
 //    on several threads (engine/parallel.h) over lazy numbers they share. The
-//    price on one thread: a std::call_once per exact evaluation (2-7% of the run
-//    time). Reference counts stay plain increments while the process has one
-//    thread (glibc's __libc_single_threaded), so --threads 1 pays no more.
+//    price on one thread, 10-14% of the CPU time (README, Threads): a
+//    std::call_once per first exact evaluation, and reference counts that are
+//    out-of-line calls asking glibc whether the process is still single-threaded
+//    (__libc_single_threaded; they become atomic once a second thread exists).
 //
 // 2. How often the exact kernel's floating-point filter could not settle a question.
 // CGAL reports each filtered predicate (and each lazy comparison) through its

@@ -587,10 +587,9 @@ void add_intersection_lines(const Grid& g, ScreenScene& ss, int threads, Stats& 
   };
   const int nf = static_cast<int>(ss.facets.size()), size = 512;
   std::vector<Found> chunks(static_cast<std::size_t>(chunk_count(nf, size)));
-  parallel_for(static_cast<int>(chunks.size()), threads, [&](int k) {
+  parallel_chunks(nf, size, threads, [&](int k, Chunk r) {
     std::vector<int> partners;
     Found& found = chunks[static_cast<std::size_t>(k)];
-    const Chunk r = chunk(k, nf, size);
     for (int fa = r.begin; fa < r.end; ++fa) intersection_lines_of(g, ss, fa, partners, found.curves, found.tested);
   });
   std::int64_t tested = 0, found = 0;
@@ -1302,9 +1301,8 @@ PieceChunks classify_pieces(const Grid& g, const ScreenScene& ss, Cuts& cuts, in
   // hold the pieces in curve order, the same for every thread count.
   const int n = static_cast<int>(ss.curves.size()), size = 256;
   std::vector<Classified> chunks(static_cast<std::size_t>(chunk_count(n, size)));
-  parallel_for(static_cast<int>(chunks.size()), threads, [&](int k) {
+  parallel_chunks(n, size, threads, [&](int k, Chunk r) {
     std::vector<Cover> covers;
-    const Chunk r = chunk(k, n, size);
     for (int ci = r.begin; ci < r.end; ++ci)
       if (cuts.needed[static_cast<std::size_t>(ci)])
         classify_curve(g, ss, ci, cuts.at[static_cast<std::size_t>(ci)], covers, chunks[static_cast<std::size_t>(k)]);

@@ -112,4 +112,11 @@ struct Chunk {
 inline int chunk_count(int n, int size) { return (n + size - 1) / size; }
 inline Chunk chunk(int k, int n, int size) { return {k * size, std::min(n, (k + 1) * size)}; }
 
+// body(k, chunk k) for the chunks of `size` consecutive items of [0, n), on
+// `threads` threads (parallel_for); chunk k's results go to the caller's slot k.
+template <class Body>
+void parallel_chunks(int n, int size, int threads, Body&& body) {
+  parallel_for(chunk_count(n, size), threads, [&](int k) { body(k, chunk(k, n, size)); });
+}
+
 }  // namespace vismap::engine

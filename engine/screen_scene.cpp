@@ -280,8 +280,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     sv[u] = P3{perspective_number(view.m[0], view.m[3], p, k), perspective_number(view.m[1], view.m[3], p, k),
                perspective_number(view.m[2], view.m[3], p, k)};
   };
-  parallel_for(chunk_count(nu, 1024), threads, [&](int c) {
-    const Chunk r = chunk(c, nu, 1024);
+  parallel_chunks(nu, 1024, threads, [&](int, Chunk r) {
     for (int u = r.begin; u < r.end; ++u) project_vertex(static_cast<std::uint32_t>(u));
   });
   auto in_front = [&](std::uint32_t id) { return front[local[id]] != 0; };
@@ -306,7 +305,8 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   // Each facet on its own (in parallel, chunks of them): its screen polygon,
   // facing and depth plane. What a chunk culled is counted in its slot.
   const int nf = static_cast<int>(wf.facets.size());
-  std::vector<std::array<std::int64_t, 2>> culled(static_cast<std::size_t>(chunk_count(nf, 512)));
+  const int facets_per_chunk = 512;
+  std::vector<std::array<std::int64_t, 2>> culled(static_cast<std::size_t>(chunk_count(nf, facets_per_chunk)));
   auto project_facet = [&](std::size_t fi, std::int64_t& outside, std::int64_t& edge_on) {
     const WorldFacet& w = wf.facets[fi];
     Facet& f = ss.facets[fi];
@@ -390,8 +390,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
       break;
     }
   };
-  parallel_for(static_cast<int>(culled.size()), threads, [&](int c) {
-    const Chunk r = chunk(c, nf, 512);
+  parallel_chunks(nf, facets_per_chunk, threads, [&](int c, Chunk r) {
     auto& [outside, edge_on] = culled[static_cast<std::size_t>(c)];
     for (int fi = r.begin; fi < r.end; ++fi) project_facet(static_cast<std::size_t>(fi), outside, edge_on);
   });
