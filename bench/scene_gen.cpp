@@ -114,6 +114,23 @@ Scene random_squares_depth(std::size_t n, double depth_complexity, std::uint64_t
   return s;
 }
 
+Scene corner_fans(std::size_t n, int hubs, std::uint64_t seed) {
+  if (hubs < 1) throw std::invalid_argument("corner_fans: need hubs >= 1");
+  Scene s;
+  s.file = "corner_fans(n=" + std::to_string(n) + ",hubs=" + std::to_string(hubs) + ",seed=" + std::to_string(seed) + ")";
+  Rng rng(seed);
+  for (int h = 0; h < hubs; ++h) s.vertices.push_back({rng.uniform(0.3, 0.7), rng.uniform(0.3, 0.7), rng.uniform(0.3, 0.7)});
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto hub = static_cast<std::uint32_t>(rng.next() % static_cast<std::uint64_t>(hubs));
+    const Vec3 c = s.vertices[hub];
+    const auto b = static_cast<std::uint32_t>(s.vertices.size());
+    for (int k = 0; k < 2; ++k)
+      s.vertices.push_back({c.x + rng.uniform(-0.4, 0.4), c.y + rng.uniform(-0.4, 0.4), c.z + rng.uniform(-0.4, 0.4)});
+    s.faces.push_back({hub, b, b + 1});
+  }
+  return s;
+}
+
 Scene random_triangles(std::size_t n, double size, std::uint64_t seed) {
   if (!(size > 0 && size <= 1)) throw std::invalid_argument("random_triangles: need 0 < size <= 1");
   Scene s;

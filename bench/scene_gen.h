@@ -45,6 +45,12 @@ Scene random_squares_depth(std::size_t n, double depth_complexity, std::uint64_t
 // Each triangle has its own three vertices. Requires 0 < size <= 1.
 Scene random_triangles(std::size_t n, double size, std::uint64_t seed);
 
+// n triangles that share corners: each has one of `hubs` common corners (spread
+// in the unit cube) and two corners of its own within 0.4 of it, so that many
+// pairs cross each other's plane at the shared corner, some piercing each other
+// from it and some meeting only there. Requires hubs >= 1.
+Scene corner_fans(std::size_t n, int hubs, std::uint64_t seed);
+
 // Franklin's cubical array: k^3 closed, outward-oriented unit cubes (8 shared
 // vertices, 6 quads each) at pitch 1 + gap, so neighbours never touch.
 // Many exactly parallel edges and faces; exercises occlusion culling.

@@ -459,9 +459,65 @@ bool has_edge(const Facet& F, long u, long v) {
 // Whether canonical vertices u and v are the ends of an edge of both facets.
 bool common_edge(const Facet& A, const Facet& B, long u, long v) { return has_edge(A, u, v) && has_edge(B, u, v); }
 
+// The input's vertices of a facet that keeps them all (not cut at the near
+// plane): its corners by canonical id, or none.
+bool input_corners(const Facet& F) {
+  return std::all_of(F.id.begin(), F.id.end(), [](long v) { return v >= 0; });
+}
+
+// Newell's test 3/4 in the world, on the input's doubles, for a triangle G:
+// whether every corner of F that G lacks lies on one closed side of G's plane. A
+// projection (parallel, or central for points in front of the eye) maps G's plane
+// to its screen plane and keeps each side of it on one side, so the answer is the
+// screen's.
+bool one_side_in_world(const Facet& F, const Facet& G, const std::vector<Vec3>& world) {
+  auto at = [&](long id) -> const Vec3& { return world[static_cast<std::size_t>(id)]; };
+  const Vec3 &o = at(G.id[0]), &a = at(G.id[1]), &b = at(G.id[2]);
+  bool pos = false, neg = false;
+  for (const long v : F.id) {
+    if (G.has_vertex(v)) continue;
+    const int s = world::orientation(o, a, b, at(v));
+    pos |= s > 0;
+    neg |= s < 0;
+  }
+  return !(pos && neg);
+}
+
+// Triangles A = (v, a1, a2) and B = (v, b1, b2) that share only corner v and
+// each cross the other's plane (the corners they do not share strictly on both
+// sides): each meets the line where the planes meet in a segment from v, A's
+// towards a point strictly inside a1-a2. They meet only at v if B's segment
+// leaves v the other way: if B's crossing of A's plane lies on the other side of
+// the line v-a1 than a2 does (told as sides of the plane through v, a1, b1).
+bool meet_only_at_shared_corner(const Facet& A, const Facet& B, const std::vector<Vec3>& world) {
+  auto at = [&](long id) -> const Vec3& { return world[static_cast<std::size_t>(id)]; };
+  int k = 0;
+  while (k < 3 && !B.has_vertex(A.id[k])) ++k;
+  if (k == 3) return false;
+  const long v = A.id[k];
+  const Vec3 &pv = at(v), &a1 = at(A.id[(k + 1) % 3]), &a2 = at(A.id[(k + 2) % 3]);
+  int j = 0;
+  while (B.id[j] != v) ++j;
+  const Vec3 &b1 = at(B.id[(j + 1) % 3]), &b2 = at(B.id[(j + 2) % 3]);
+  const int crossing = world::orientation(pv, a1, b1, b2), other = world::orientation(pv, a1, b1, a2);
+  return crossing != 0 && other != 0 && crossing != other;
+}
+
+// Whether triangles A and B, both keeping their input corners, are proved on the
+// input's doubles to have no crossing (most pairs a grid offers on a mesh are
+// neighbours, apart). False: not proved.
+bool apart_in_world(const Facet& A, const Facet& B, const std::vector<Vec3>& world) {
+  if (A.id.size() != 3 || B.id.size() != 3 || !input_corners(A) || !input_corners(B)) return false;
+  if (one_side_in_world(A, B, world) || one_side_in_world(B, A, world)) return true;
+  // Each crosses the other's plane strictly (a shared corner lies in both).
+  return meet_only_at_shared_corner(A, B, world);
+}
+
 // Where facets A and B cross in 3D strictly inside both projections, as a screen
 // segment; false when they do not, or only along an edge of either.
 bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3>* world, P2& p, P2& q) {
+  // Most pairs a grid offers are neighbours on a mesh, apart: told on doubles.
+  if (world && apart_in_world(A, B, *world)) return false;
   // Newell's tests 3 and 4: one facet entirely on one side of the other's plane.
   auto one_side = [&](const Facet& F, const Facet& G) {
     bool pos = false, neg = false;
@@ -544,63 +600,120 @@ bool share_an_edge(const Facet& A, const Facet& B) {
 
 namespace {
 
-// The intersection lines of facet fa with the facets after it that share a cell
-// with it (its partners, each once, in index order), appended to `out`.
-void intersection_lines_of(const Grid& g, const ScreenScene& ss, int fa, std::vector<int>& partners,
-                           std::vector<Curve>& out, std::int64_t& tested) {
-  const Facet& A = ss.facets[fa];
-  if (!A.occluder) return;
-  partners.clear();
-  const CellRange r = range_of(g, A.box);
-  for (int iy = r.y0; iy <= r.y1; ++iy)
-    for (int ix = r.x0; ix <= r.x1; ++ix) {
-      const Cell& cell = g.at(ix, iy);
-      if (cell.blocker != fa && std::find(cell.facets.begin(), cell.facets.end(), fa) == cell.facets.end()) continue;
-      for (int fb : cell.facets)
-        if (fb > fa) partners.push_back(fb);
-      if (cell.blocker > fa) partners.push_back(cell.blocker);
-    }
-  std::sort(partners.begin(), partners.end());
-  partners.erase(std::unique(partners.begin(), partners.end()), partners.end());
-  for (const int fb : partners) {
-    const Facet& B = ss.facets[fb];
-    if (A.face == B.face || !CGAL::do_overlap(A.box, B.box)) continue;
-    // Depth ranges apart: no point of one is at the other's depth.
-    if (A.zhi < B.zlo || B.zhi < A.zlo) continue;
-    if (share_an_edge(A, B)) continue;
-    ++tested;
-    P2 p, q;
-    if (!intersection_segment(A, B, ss.world, p, q)) continue;
-    out.push_back(intersection_curve(P3(p, A.depth_at(p)), P3(q, A.depth_at(q)), fa, fb, A.face, B.face));
+// Where each facet is listed, for the search of pairs: the cells of its box, and
+// whether it is listed in every one of them (not hidden behind a blocker in any).
+struct Listing {
+  std::vector<CellRange> range;
+  std::vector<char> complete;
+};
+
+Listing listing_of(const Grid& g, const ScreenScene& ss, int threads) {
+  const int nf = static_cast<int>(ss.facets.size());
+  Listing l;
+  l.range.resize(ss.facets.size());
+  parallel_chunks(nf, 4096, threads, [&](int, Chunk r) {
+    for (int fi = r.begin; fi < r.end; ++fi) l.range[fi] = range_of(g, ss.facets[fi].box);
+  });
+  std::vector<int> listed(ss.facets.size(), 0);
+  for (const Cell& cell : g.cells) {
+    for (int fi : cell.facets) ++listed[fi];
+    if (cell.blocker >= 0) ++listed[cell.blocker];
   }
+  l.complete.resize(ss.facets.size());
+  for (int fi = 0; fi < nf; ++fi) {
+    const CellRange& r = l.range[fi];
+    l.complete[fi] = listed[fi] == (r.x1 - r.x0 + 1) * (r.y1 - r.y0 + 1);
+  }
+  return l;
+}
+
+bool listed_in(const Cell& cell, int fi) {
+  return cell.blocker == fi || std::find(cell.facets.begin(), cell.facets.end(), fi) != cell.facets.end();
+}
+
+// Whether cell (ix, iy), which lists facets a and b, is the first in row order
+// to list both: each pair is tested once, there. Where both are listed in every
+// cell of their boxes, that is the first cell the boxes share.
+bool first_common_cell(const Grid& g, const Listing& l, int a, int b, int ix, int iy) {
+  const CellRange &ra = l.range[a], &rb = l.range[b];
+  const int x0 = std::max(ra.x0, rb.x0), x1 = std::min(ra.x1, rb.x1), y0 = std::max(ra.y0, rb.y0);
+  if (l.complete[a] && l.complete[b]) return ix == x0 && iy == y0;
+  for (int y = y0; y <= iy; ++y)
+    for (int x = x0; x <= x1 && (y < iy || x < ix); ++x)
+      if (listed_in(g.at(x, y), a) && listed_in(g.at(x, y), b)) return false;
+  return true;
+}
+
+// A facet as the pair search reads it, copied next to the others of its cell.
+struct Member {
+  int fi, face;
+  CGAL::Bbox_2 box;
+  double zlo, zhi;
+};
+
+struct Crossing {   // facets fa < fb cross along p-q
+  int fa, fb;
+  P2 p, q;
+};
+
+// The crossings of the pairs of facets that cell (ix, iy) is the first to list
+// together, appended to `out`.
+void crossings_in_cell(const Grid& g, const ScreenScene& ss, const Listing& l, int ix, int iy,
+                       std::vector<Member>& members, std::vector<Crossing>& out, std::int64_t& tested) {
+  const Cell& cell = g.at(ix, iy);
+  members.clear();
+  auto add = [&](int fi) {
+    const Facet& f = ss.facets[fi];
+    members.push_back(Member{fi, f.face, f.box, f.zlo, f.zhi});
+  };
+  for (int fi : cell.facets) add(fi);
+  if (cell.blocker >= 0) add(cell.blocker);
+  for (std::size_t i = 0; i < members.size(); ++i)
+    for (std::size_t j = i + 1; j < members.size(); ++j) {
+      const Member &m = members[i], &n = members[j];
+      if (m.fi == n.fi || m.face == n.face || !CGAL::do_overlap(m.box, n.box)) continue;
+      // Depth ranges apart: no point of one is at the other's depth.
+      if (m.zhi < n.zlo || n.zhi < m.zlo) continue;
+      const int fa = std::min(m.fi, n.fi), fb = std::max(m.fi, n.fi);
+      if (!first_common_cell(g, l, fa, fb, ix, iy)) continue;
+      const Facet &A = ss.facets[fa], &B = ss.facets[fb];
+      if (share_an_edge(A, B)) continue;
+      ++tested;
+      P2 p, q;
+      if (intersection_segment(A, B, ss.world, p, q)) out.push_back(Crossing{fa, fb, p, q});
+    }
 }
 
 }  // namespace
 
 // Faces that pierce each other: an intersection line for every pair of facets of
-// different faces that share a cell and cross inside both projections. Chunks of
-// facets in parallel; their lines are appended in facet order.
+// different faces that some cell lists together and that cross inside both
+// projections. Rows of cells in parallel, each pair tested in the first cell
+// that lists both; the lines are appended in the order of their pairs.
 void add_intersection_lines(const Grid& g, ScreenScene& ss, int threads, Stats& stats) {
-  struct Found {
-    std::vector<Curve> curves;
-    std::int64_t tested = 0;
-  };
-  const int nf = static_cast<int>(ss.facets.size()), size = 512;
-  std::vector<Found> chunks(static_cast<std::size_t>(chunk_count(nf, size)));
-  parallel_chunks(nf, size, threads, [&](int k, Chunk r) {
-    std::vector<int> partners;
-    Found& found = chunks[static_cast<std::size_t>(k)];
-    for (int fa = r.begin; fa < r.end; ++fa) intersection_lines_of(g, ss, fa, partners, found.curves, found.tested);
+  const Listing l = listing_of(g, ss, threads);
+  std::vector<std::vector<Crossing>> by_row(static_cast<std::size_t>(g.Y.cells()));
+  std::vector<std::int64_t> tested_by_row(by_row.size(), 0);
+  parallel_for(g.Y.cells(), threads, [&](int iy) {
+    std::vector<Member> members;
+    const auto row = static_cast<std::size_t>(iy);
+    for (int ix = 0; ix < g.X.cells(); ++ix) crossings_in_cell(g, ss, l, ix, iy, members, by_row[row], tested_by_row[row]);
   });
-  std::int64_t tested = 0, found = 0;
-  for (Found& c : chunks) {
-    tested += c.tested;
-    found += static_cast<std::int64_t>(c.curves.size());
-    std::move(c.curves.begin(), c.curves.end(), std::back_inserter(ss.curves));
-    std::vector<Curve>().swap(c.curves);
+  std::vector<Crossing> found;
+  std::int64_t tested = 0;
+  for (std::size_t row = 0; row < by_row.size(); ++row) {
+    tested += tested_by_row[row];
+    std::move(by_row[row].begin(), by_row[row].end(), std::back_inserter(found));
+  }
+  std::sort(found.begin(), found.end(), [](const Crossing& x, const Crossing& y) {
+    return std::pair(x.fa, x.fb) < std::pair(y.fa, y.fb);
+  });
+  for (const Crossing& c : found) {
+    const Facet &A = ss.facets[c.fa], &B = ss.facets[c.fb];
+    ss.curves.push_back(intersection_curve(P3(c.p, A.depth_at(c.p)), P3(c.q, A.depth_at(c.q)), c.fa, c.fb, A.face, B.face));
   }
   stats.count("facet_pairs_tested", tested);
-  stats.count("intersection_lines", found);
+  stats.count("intersection_lines", static_cast<std::int64_t>(found.size()));
 }
 
 namespace {

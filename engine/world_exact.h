@@ -7,6 +7,7 @@
 #include <CGAL/Interval_nt.h>
 #include <CGAL/Mpzf.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <initializer_list>
@@ -28,6 +29,29 @@ template <class N>
 N det(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& c) {
   const std::array<N, 3> n = normal_of<N>(o, a, b);
   return n[0] * (N(c.x) - N(o.x)) + n[1] * (N(c.y) - N(o.y)) + n[2] * (N(c.z) - N(o.z));
+}
+
+// sign(det(a - o, b - o, c - o)), exact: on doubles where CGAL's static filter
+// for Orientation_3 (Epick's bound, with its guards against underflow and
+// overflow) settles it, on binary floats (Mpzf, no gcd) where it cannot. For
+// predicates asked millions of times on a mesh (faces that may pierce each other).
+inline int orientation(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double ax = a.x - o.x, ay = a.y - o.y, az = a.z - o.z;
+  const double bx = b.x - o.x, by = b.y - o.y, bz = b.z - o.z;
+  const double cx = c.x - o.x, cy = c.y - o.y, cz = c.z - o.z;
+  double mx = std::max({std::abs(ax), std::abs(bx), std::abs(cx)});
+  double my = std::max({std::abs(ay), std::abs(by), std::abs(cy)});
+  double mz = std::max({std::abs(az), std::abs(bz), std::abs(cz)});
+  const double eps = 5.1107127829973299e-15 * mx * my * mz;
+  const double d = ax * (by * cz - bz * cy) - bx * (ay * cz - az * cy) + cx * (ay * bz - az * by);
+  if (mx > mz) std::swap(mx, mz);   // mx <= my <= mz
+  if (my > mz) std::swap(my, mz);
+  else if (my < mx) std::swap(mx, my);
+  if (mx >= 1e-97 && mz < 1e102) {
+    if (d > eps) return 1;
+    if (d < -eps) return -1;
+  }
+  return det<CGAL::Mpzf>(o, a, b, c).sign();
 }
 
 // Whether every coordinate of the points is at most 2^e in magnitude: interval

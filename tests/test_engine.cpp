@@ -117,6 +117,9 @@ std::vector<RandomCase> random_cases() {
       {"boxes_perspective", [](std::uint64_t s) { return interpenetrating_boxes(4, s); },
        persp({3, -4, 3.5}, {0, 0, 0}, 45)},
       {"terrain", [](std::uint64_t s) { return terrain(5, s); }, ortho({-1, -0.5, -0.7})},
+      {"corner_fans", [](std::uint64_t s) { return corner_fans(14, 2, s); }, ortho({-1, -2, -1.5})},
+      {"corner_fans_perspective", [](std::uint64_t s) { return corner_fans(14, 2, s); },
+       persp({1.8, -1.2, 1.6}, {0.5, 0.5, 0.5}, 60)},
   };
 }
 
