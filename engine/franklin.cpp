@@ -26,7 +26,8 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   const int threads = run.threads = thread_count(opt.threads, scene.faces.size());
 
   // 1. Project the scene exactly; skip what cannot be seen (outside, edge-on, back faces).
-  ScreenScene ss = make_screen_scene(scene, view, run, st);
+  // (For a lines-only drawing, curves that are not drawn stay latent until step 7.)
+  ScreenScene ss = make_screen_scene(scene, view, run, st, /*latent=*/!opt.regions);
   st.time("project_and_cull", clock.lap());
 
   // (Facets and curves are already in screen order: make_screen_scene.)

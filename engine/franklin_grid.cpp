@@ -180,6 +180,12 @@ double warped(const Axis& a, double v) {
   return (i + std::clamp((v - a[i]) / w, 0.0, 1.0)) / a.cells();
 }
 
+// The curves' boxes, by index: the curves made, then the latent ones.
+std::size_t curve_count(const ScreenScene& ss) { return ss.curves.size() + ss.latent_box.size(); }
+const CGAL::Bbox_2& curve_box(const ScreenScene& ss, std::size_t i) {
+  return i < ss.curves.size() ? ss.curves[i].box : ss.latent_box[i - ss.curves.size()];
+}
+
 // The depth complexity: the occluders' projected area over the screen's, both
 // in the grid's own coordinates (doubles: it only sizes the grid). Each facet's
 // area is scaled by how its bounding box is stretched there.
@@ -206,11 +212,11 @@ double depth_complexity(const ScreenScene& ss, const Axis& X, const Axis& Y) {
 // The mean length of the curves in the grid's own coordinates (Franklin's L),
 // on a sample of them.
 double mean_length(const ScreenScene& ss, const Axis& X, const Axis& Y) {
-  const std::size_t n = ss.curves.size(), step = std::max<std::size_t>(1, n / 4096);
+  const std::size_t n = curve_count(ss), step = std::max<std::size_t>(1, n / 4096);
   double sum = 0;
   std::size_t count = 0;
   for (std::size_t i = 0; i < n; i += step, ++count) {
-    const CGAL::Bbox_2& b = ss.curves[i].box;
+    const CGAL::Bbox_2& b = curve_box(ss, i);
     sum += std::hypot(warped(X, b.xmax()) - warped(X, b.xmin()), warped(Y, b.ymax()) - warped(Y, b.ymin()));
   }
   return count ? sum / static_cast<double>(count) : 0;
@@ -238,11 +244,11 @@ std::vector<double> quantile_bounds(const std::vector<double>& v, int B, double 
 // The curves' end point coordinates along x (y: false), sorted: a sample of
 // about `want` values, taken evenly from the curves (which are in screen order).
 std::vector<double> end_coordinates(const ScreenScene& ss, bool x, std::size_t want) {
-  const std::size_t n = ss.curves.size(), step = std::max<std::size_t>(1, 2 * n / std::max<std::size_t>(want, 1));
+  const std::size_t n = curve_count(ss), step = std::max<std::size_t>(1, 2 * n / std::max<std::size_t>(want, 1));
   std::vector<double> v;
   v.reserve(2 * n / step + 2);
   for (std::size_t i = 0; i < n; i += step) {
-    const CGAL::Bbox_2& b = ss.curves[i].box;
+    const CGAL::Bbox_2& b = curve_box(ss, i);
     v.push_back(x ? b.xmin() : b.ymin());
     v.push_back(x ? b.xmax() : b.ymax());
   }
@@ -293,15 +299,15 @@ int Axis::index(double v) const {
 Grid make_grid(const ScreenScene& ss, double c, Stats& stats) {
   CGAL::Bbox_2 box;
   bool any = false;
-  for (const Curve& cv : ss.curves) {
-    box = any ? box + cv.box : cv.box;
+  for (std::size_t i = 0; i < curve_count(ss); ++i) {
+    box = any ? box + curve_box(ss, i) : curve_box(ss, i);
     any = true;
   }
   for (const Facet& f : ss.facets)
     if (f.occluder) { box = any ? box + f.box : f.box; any = true; }
   if (!any) box = CGAL::Bbox_2(0, 0, 1, 1);
   Grid g;
-  const double n = static_cast<double>(ss.curves.size());
+  const double n = static_cast<double>(curve_count(ss));
   const bool sized = any && std::max(box.xmax() - box.xmin(), box.ymax() - box.ymin()) > 0 && n > 0;
   std::vector<double> xs, ys;
   if (sized) {
@@ -778,15 +784,37 @@ void bucket_needed_curves(Grid& g, const ScreenScene& ss, const std::vector<char
 // behind the cell's blocker (7a-i); a curve listed nowhere is hidden (7b). For
 // the drawn lines alone: the drawn curves everywhere, the others only into cells
 // where a drawn one is (where they could meet it; cut_curves adds the rest it needs).
-void bucket_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats& stats) {
+namespace {
+
+// Per latent curve: whether its box reaches a cell that holds a drawn curve (the
+// cells the undrawn ones are listed in for a lines-only drawing).
+std::vector<char> latent_near_drawn(const Grid& g, const ScreenScene& ss, int threads) {
+  std::vector<char> wanted(ss.latent_box.size(), 0);
+  parallel_chunks(static_cast<int>(wanted.size()), 4096, threads, [&](int, Chunk c) {
+    for (int i = c.begin; i < c.end; ++i) {
+      const CellRange r = range_of(g, ss.latent_box[static_cast<std::size_t>(i)]);
+      for (int iy = r.y0; iy <= r.y1 && !wanted[i]; ++iy)
+        for (int ix = r.x0; ix <= r.x1 && !wanted[i]; ++ix) wanted[i] = !g.at(ix, iy).curves.empty();
+    }
+  });
+  return wanted;
+}
+
+}  // namespace
+
+void bucket_curves(Grid& g, ScreenScene& ss, bool regions, int threads, Stats& stats) {
   std::int64_t listed = 0, hidden = 0;
   auto everywhere = [](int, int) { return true; };
   if (regions) {
     hidden = bucket(g, ss, threads, [](int) { return true; }, everywhere, listed);
   } else {
     hidden = bucket(g, ss, threads, [&](int ci) { return ss.curves[ci].drawn; }, everywhere, listed);
-    bucket(g, ss, threads, [&](int ci) { return !ss.curves[ci].drawn; }, [&](int ix, int iy) { return !g.at(ix, iy).curves.empty(); },
-           listed);
+    auto holds_drawn = [&](int ix, int iy) { return !g.at(ix, iy).curves.empty(); };
+    // The latent curves (not drawn) those cells may list: made now.
+    const std::vector<char> wanted = latent_near_drawn(g, ss, threads);
+    stats.count("curves_made_late", std::count(wanted.begin(), wanted.end(), 1));
+    make_latent_curves(ss, wanted, threads);
+    bucket(g, ss, threads, [&](int ci) { return !ss.curves[ci].drawn; }, holds_drawn, listed);
   }
   stats.count("curve_cells", listed);
   stats.count("edges_culled_behind_blocking_face", hidden);

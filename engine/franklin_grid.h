@@ -54,7 +54,7 @@ Grid make_grid(const ScreenScene& ss, double c, Stats& stats);                  
 void bucket_facets(Grid& g, ScreenScene& ss, int threads, Stats& stats);                       // step 5
 void prune_facets(Grid& g, const ScreenScene& ss, int threads, Stats& stats);                  // step 6
 void add_intersection_lines(const Grid& g, ScreenScene& ss, int threads, Stats& stats);   // faces piercing each other
-void bucket_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats& stats);   // step 7
+void bucket_curves(Grid& g, ScreenScene& ss, bool regions, int threads, Stats& stats);   // step 7
 // Step 8's cut points per curve, and which curves the map needs (all of them,
 // unless only the drawn lines are wanted).
 struct Cuts {

@@ -228,12 +228,115 @@ Curve intersection_curve(const P3& s, const P3& t, int fa, int fb, int face_a, i
   return c;
 }
 
+// What making a curve from an edge piece needs: the world facets and pieces, the
+// used vertices' images, the near plane's cuts. Shared with the screen scene
+// while curves are latent (make_latent_curves), freed with it otherwise.
+struct CurveMaker {
+  const Scene* scene = nullptr;
+  const View* view = nullptr;
+  int k = 0;                     // the screen scale
+  double cos_crease = 1;
+  bool smooth = false;
+  WorldFacets wf;
+  std::vector<WorldPiece> pieces;
+  std::vector<std::uint32_t> used;    // place -> input index: vertices in the order facets first use them
+  std::vector<std::uint32_t> local;   // input index -> place in used
+  std::vector<P3> sv;                 // images, by place
+  std::vector<char> front;            // in front of the near plane, by place
+  std::vector<FT> hz;                 // homogeneous Z, by place (perspective: the near plane is Z = 0)
+  std::vector<std::vector<P3>> clip_edges;   // per facet: its cut by the near plane
+  std::vector<char> occluder;         // per facet: hides and labels, as culling left it
+
+  bool in_front(std::uint32_t id) const { return front[local[id]] != 0; }
+  const P3& image(std::uint32_t id) const { return sv[local[id]]; }
+  WorldPoint world(std::uint32_t id) const {
+    const Vec3& p = scene->vertices[id];
+    return WorldPoint{FT(p.x), FT(p.y), FT(p.z)};
+  }
+  P3 near_image(const WorldPoint& w) const {   // a point on the near plane: depth 0 exactly
+    Homogeneous h = transform(*view, w.x, w.y, w.z);
+    mpq_class x = to_mpq(h.X / h.W), y = to_mpq(h.Y / h.W);
+    times_pow2(x, k);
+    times_pow2(y, k);
+    return P3{from_mpq(x), from_mpq(y), FT(0)};
+  }
+  P3 clip_point(std::uint32_t a, std::uint32_t b) const {
+    return near_image(cut_at_near(world(a), world(b), hz[local[a]], hz[local[b]]));
+  }
+  bool make(const std::vector<Facet>& facets, const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3>& dropped) const;
+};
+
+// The curve of edge piece wp, made in c (every field set: c may be reused);
+// false if it is dropped (counted in `dropped`: hidden, clipped, seen end-on).
+bool CurveMaker::make(const std::vector<Facet>& facets, const WorldPiece& wp, Curve& c,
+                      std::array<std::int64_t, 3>& dropped) const {
+  std::int64_t &dropped_hidden = dropped[0], &dropped_clipped = dropped[1], &dropped_point = dropped[2];
+  c.sharers.clear();
+  c.sharer_edge.clear();
+  c.faces.clear();
+  c.kind = EdgeKind::Border;
+  bool any_occluder = false;
+  for (const Sharer& s : wp.sharers) {
+    c.sharers.push_back(s.facet);
+    // A facet not cut at the near plane keeps its vertices: its edge k is the world's.
+    c.sharer_edge.push_back(clip_edges[s.facet].empty() && !facets[s.facet].v.empty() ? s.edge : -1);
+    if (wf.facets[s.facet].role[s.edge] == EdgeRole::Boundary) c.faces.push_back(wf.facets[s.facet].face);
+    const Facet& f = facets[s.facet];
+    any_occluder |= occluder[s.facet] || (!f.v.empty() && f.facing == Facing::EdgeOn);
+  }
+  // Every facet sharing it is a culled back face: hidden (or coincident with a
+  // nearer visible line on screen), so it cannot change the map.
+  if (!any_occluder) { ++dropped_hidden; return false; }
+  std::sort(c.faces.begin(), c.faces.end());
+  c.faces.erase(std::unique(c.faces.begin(), c.faces.end()), c.faces.end());
+  // Kind, from the faces sharing the piece.
+  if (c.faces.size() == 1) c.kind = EdgeKind::Border;
+  else if (c.faces.size() >= 3) c.kind = EdgeKind::Crease;
+  else if (c.faces.size() == 2) {
+    int fa = -1, fb = -1;   // one facet of each face
+    for (const Sharer& s : wp.sharers) {
+      if (wf.facets[s.facet].role[s.edge] != EdgeRole::Boundary) continue;
+      if (wf.facets[s.facet].face == c.faces[0] && fa < 0) fa = s.facet;
+      if (wf.facets[s.facet].face == c.faces[1] && fb < 0) fb = s.facet;
+    }
+    auto facing = [&](int fi) { return facets[fi].v.empty() ? Facing::EdgeOn : facets[fi].facing; };
+    auto spanning_of = [&](int fi) { return spanning_corners(*scene, wf.facets[fi]); };
+    Facing ga = facing(fa), gb = facing(fb);
+    if ((ga == Facing::Front) != (gb == Facing::Front)) c.kind = EdgeKind::Silhouette;
+    else if (ga == gb && ga != Facing::EdgeOn)
+      c.kind = is_crease(spanning_of(fa), spanning_of(fb), cos_crease) ? EdgeKind::Crease : EdgeKind::Smooth;
+    else c.kind = EdgeKind::Smooth;
+  }
+  c.drawn = !c.faces.empty() && (c.kind != EdgeKind::Smooth || smooth);
+  // Its place in the (depth, face index) order: the lowest face it belongs to.
+  c.order_face = facets[c.sharers[0]].face;
+  for (int s : c.sharers) c.order_face = std::min(c.order_face, facets[s].face);
+  if (!c.faces.empty()) c.order_face = c.faces[0];
+  // Clip at the near plane, project.
+  std::uint32_t a = wp.a, b = wp.b;
+  const bool fa = in_front(a), fb = in_front(b);
+  if (!fa && !fb) { ++dropped_clipped; return false; }
+  c.s = fa ? image(a) : clip_point(b, a);
+  c.t = fb ? image(b) : clip_point(a, b);
+  c.vs = fa ? static_cast<long>(a) : -1;
+  c.vt = fb ? static_cast<long>(b) : -1;
+  if (c.s.xy() == c.t.xy()) { ++dropped_point; return false; }   // seen end-on
+  c.box = box_of(c.s) + box_of(c.t);
+  return true;
+}
+
 ScreenScene make_screen_scene(const Scene& scene, const View& view, const EngineOptions& opt,
-                              Stats& stats) {
-  WorldFacets wf = make_world_facets(scene);
+                              Stats& stats, bool latent) {
+  auto maker = std::make_shared<CurveMaker>();
+  CurveMaker& M = *maker;
+  M.scene = &scene;
+  M.view = &view;
+  M.cos_crease = std::cos(opt.crease_deg * M_PI / 180);
+  M.smooth = opt.smooth;
+  WorldFacets& wf = M.wf = make_world_facets(scene);
   order_on_screen(wf, scene, view);
   const int threads = thread_count(opt.threads, scene.faces.size());
-  std::vector<WorldPiece> pieces = match_edges(scene, wf, /*cell_bits=*/20, threads);
+  std::vector<WorldPiece>& pieces = M.pieces = match_edges(scene, wf, /*cell_bits=*/20, threads);
   stats.count("faces_degenerate_dropped", wf.degenerate);
   stats.count("faces_nonplanar_fanned", wf.nonplanar);
   stats.count("faces_nonconvex_triangulated", wf.nonconvex);
@@ -242,18 +345,21 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   // Each vertex is transformed once. Its image is stored at its place in
   // `used` (the order facets first use it: screen order), not at its input
   // index, so that facets and curves read their vertices nearly in sequence.
-  std::vector<std::uint32_t> used;
-  std::vector<std::uint32_t> local(scene.vertices.size(), ~0u);   // input index -> place in used
+  std::vector<std::uint32_t>& used = M.used;
+  std::vector<std::uint32_t>& local = M.local;
+  local.assign(scene.vertices.size(), ~0u);
   for (const auto& f : wf.facets)
     for (auto id : f.v)
       if (local[id] == ~0u) { local[id] = static_cast<std::uint32_t>(used.size()); used.push_back(id); }
   ScreenScene ss;
   ss.world = &scene.vertices;
-  const int k = ss.scale_exp = screen_scale(scene, used, view);
-  std::vector<FT> hz;   // homogeneous Z, for clipping at the near plane (perspective)
+  const int k = M.k = ss.scale_exp = screen_scale(scene, used, view);
+  std::vector<FT>& hz = M.hz;   // homogeneous Z, for clipping at the near plane (perspective)
   if (view.perspective) hz.resize(used.size());
-  std::vector<P3> sv(used.size());
-  std::vector<char> front(used.size(), 0);
+  std::vector<P3>& sv = M.sv;
+  sv.resize(used.size());
+  std::vector<char>& front = M.front;
+  front.assign(used.size(), 0);
   std::vector<std::int8_t> zsign(used.size(), 1);   // sign of Z (perspective): the near plane is Z = 0
   // Input vertices: exact values that no rational arithmetic is done for unless
   // a predicate needs them (engine/lazy_leaves.h). In parallel, chunks of them.
@@ -283,25 +389,13 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   parallel_chunks(nu, 1024, threads, [&](int, Chunk r) {
     for (int u = r.begin; u < r.end; ++u) project_vertex(static_cast<std::uint32_t>(u));
   });
-  auto in_front = [&](std::uint32_t id) { return front[local[id]] != 0; };
-  auto image = [&](std::uint32_t id) -> const P3& { return sv[local[id]]; };
-  auto world = [&](std::uint32_t id) {
-    const Vec3& p = scene.vertices[id];
-    return WorldPoint{FT(p.x), FT(p.y), FT(p.z)};
-  };
-  auto near_image = [&](const WorldPoint& w) {   // a point on the near plane: depth 0 exactly
-    Homogeneous h = transform(view, w.x, w.y, w.z);
-    mpq_class x = to_mpq(h.X / h.W), y = to_mpq(h.Y / h.W);
-    times_pow2(x, k);
-    times_pow2(y, k);
-    return P3{from_mpq(x), from_mpq(y), FT(0)};
-  };
-  auto clip_point = [&](std::uint32_t a, std::uint32_t b) {
-    return near_image(cut_at_near(world(a), world(b), hz[local[a]], hz[local[b]]));
-  };
+  auto in_front = [&](std::uint32_t id) { return M.in_front(id); };
+  auto image = [&](std::uint32_t id) -> const P3& { return M.image(id); };
+  auto clip_point = [&](std::uint32_t a, std::uint32_t b) { return M.clip_point(a, b); };
 
   ss.facets.resize(wf.facets.size());
-  std::vector<std::vector<P3>> clip_edges(wf.facets.size());  // near-plane cuts
+  std::vector<std::vector<P3>>& clip_edges = M.clip_edges;  // near-plane cuts
+  clip_edges.resize(wf.facets.size());
   // Each facet on its own (in parallel, chunks of them): its screen polygon,
   // facing and depth plane. What a chunk culled is counted in its slot.
   const int nf = static_cast<int>(wf.facets.size());
@@ -416,7 +510,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
       b = box_of(ce[0]) + box_of(ce[1]);
       return true;
     };
-    np.on_plane = [&](std::uint32_t id) { return box_of(near_image(world(id))); };
+    np.on_plane = [&](std::uint32_t id) { return box_of(M.near_image(M.world(id))); };
     caps = near_caps(wf, pieces, cc, np);
   }
   std::vector<CGAL::Bbox_2> facet_box(ss.facets.size());
@@ -435,82 +529,42 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   stats.count("culled_back_faces", back);
   stats.count("near_plane_caps", static_cast<std::int64_t>(caps.size()));
 
-  // Each facet's spanning corners in the world, for the crease angle.
-  auto spanning_of = [&](int fi) { return spanning_corners(scene, wf.facets[fi]); };
+  M.occluder.resize(ss.facets.size());
+  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) M.occluder[fi] = ss.facets[fi].occluder;
 
-  const double cos_crease = std::cos(opt.crease_deg * M_PI / 180);
-  // The curve of edge piece wp, made in c; false if it is dropped (counted in `dropped`).
-  auto make_curve = [&](const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3>& dropped) {
-    std::int64_t &dropped_hidden = dropped[0], &dropped_clipped = dropped[1], &dropped_point = dropped[2];
-    bool any_occluder = false;
-    for (const Sharer& s : wp.sharers) {
-      c.sharers.push_back(s.facet);
-      // A facet not cut at the near plane keeps its vertices: its edge k is the world's.
-      c.sharer_edge.push_back(clip_edges[s.facet].empty() && !ss.facets[s.facet].v.empty() ? s.edge : -1);
-      if (wf.facets[s.facet].role[s.edge] == EdgeRole::Boundary) c.faces.push_back(wf.facets[s.facet].face);
-      const Facet& f = ss.facets[s.facet];
-      any_occluder |= f.occluder || (!f.v.empty() && f.facing == Facing::EdgeOn);
-    }
-    // Every facet sharing it is a culled back face: hidden (or coincident with a
-    // nearer visible line on screen), so it cannot change the map.
-    if (!any_occluder) { ++dropped_hidden; return false; }
-    std::sort(c.faces.begin(), c.faces.end());
-    c.faces.erase(std::unique(c.faces.begin(), c.faces.end()), c.faces.end());
-    // Kind, from the faces sharing the piece.
-    if (c.faces.size() == 1) c.kind = EdgeKind::Border;
-    else if (c.faces.size() >= 3) c.kind = EdgeKind::Crease;
-    else if (c.faces.size() == 2) {
-      int fa = -1, fb = -1;   // one facet of each face
-      for (const Sharer& s : wp.sharers) {
-        if (wf.facets[s.facet].role[s.edge] != EdgeRole::Boundary) continue;
-        if (wf.facets[s.facet].face == c.faces[0] && fa < 0) fa = s.facet;
-        if (wf.facets[s.facet].face == c.faces[1] && fb < 0) fb = s.facet;
-      }
-      auto facing = [&](int fi) { return ss.facets[fi].v.empty() ? Facing::EdgeOn : ss.facets[fi].facing; };
-      Facing ga = facing(fa), gb = facing(fb);
-      if ((ga == Facing::Front) != (gb == Facing::Front)) c.kind = EdgeKind::Silhouette;
-      else if (ga == gb && ga != Facing::EdgeOn)
-        c.kind = is_crease(spanning_of(fa), spanning_of(fb), cos_crease) ? EdgeKind::Crease : EdgeKind::Smooth;
-      else c.kind = EdgeKind::Smooth;
-    }
-    c.drawn = !c.faces.empty() && (c.kind != EdgeKind::Smooth || opt.smooth);
-    // Its place in the (depth, face index) order: the lowest face it belongs to.
-    c.order_face = ss.facets[c.sharers[0]].face;
-    for (int s : c.sharers) c.order_face = std::min(c.order_face, ss.facets[s].face);
-    if (!c.faces.empty()) c.order_face = c.faces[0];
-    // Clip at the near plane, project.
-    std::uint32_t a = wp.a, b = wp.b;
-    const bool fa = in_front(a), fb = in_front(b);
-    if (!fa && !fb) { ++dropped_clipped; return false; }
-    c.s = fa ? image(a) : clip_point(b, a);
-    c.t = fb ? image(b) : clip_point(a, b);
-    c.vs = fa ? static_cast<long>(a) : -1;
-    c.vt = fb ? static_cast<long>(b) : -1;
-    if (c.s.xy() == c.t.xy()) { ++dropped_point; return false; }   // seen end-on
-    c.box = box_of(c.s) + box_of(c.t);
-    return true;
-  };
   // Chunks of pieces in parallel, a wave of chunks at a time; each wave's curves
   // are appended in piece order before the next: the curves are never held
   // twice (curves made in place instead would be default-made first, and their
   // placeholder numbers, one shared object, then released by every thread at once).
+  // Latent curves: only their boxes are kept (and the curve made for each, to
+  // tell whether it is drawn, reused).
   const int np = static_cast<int>(pieces.size()), size = 1024, wave = 64;
-  ss.curves.reserve(pieces.size() + ss.facets.size() / 8);   // (+ near-plane cuts; + intersection lines later)
+  if (!latent) ss.curves.reserve(pieces.size() + ss.facets.size() / 8);   // (+ near-plane cuts; + intersection lines later)
   std::vector<std::array<std::int64_t, 3>> dropped(static_cast<std::size_t>(chunk_count(np, size)));
   for (int w = 0; w < static_cast<int>(dropped.size()); w += wave) {
-    std::vector<std::vector<Curve>> made(static_cast<std::size_t>(std::min(wave, static_cast<int>(dropped.size()) - w)));
-    parallel_for(static_cast<int>(made.size()), threads, [&](int j) {
+    const auto n = static_cast<std::size_t>(std::min(wave, static_cast<int>(dropped.size()) - w));
+    std::vector<std::vector<Curve>> made(n);
+    std::vector<std::vector<std::pair<int, CGAL::Bbox_2>>> left(n);
+    parallel_for(static_cast<int>(n), threads, [&](int j) {
       const int k = w + j;
       const Chunk r = chunk(k, np, size);
       std::vector<Curve>& out = made[static_cast<std::size_t>(j)];
-      out.reserve(static_cast<std::size_t>(r.end - r.begin));
+      if (!latent) out.reserve(static_cast<std::size_t>(r.end - r.begin));
+      Curve c;
       for (int i = r.begin; i < r.end; ++i) {
-        Curve c;
-        if (make_curve(pieces[static_cast<std::size_t>(i)], c, dropped[static_cast<std::size_t>(k)]))
-          out.push_back(std::move(c));
+        if (!latent) c = Curve();
+        if (!M.make(ss.facets, pieces[static_cast<std::size_t>(i)], c, dropped[static_cast<std::size_t>(k)])) continue;
+        if (latent && !c.drawn) left[static_cast<std::size_t>(j)].emplace_back(i, c.box);
+        else if (latent) out.push_back(c);
+        else out.push_back(std::move(c));
       }
     });
     for (std::vector<Curve>& m : made) std::move(m.begin(), m.end(), std::back_inserter(ss.curves));
+    for (const auto& l : left)
+      for (const auto& [piece, box] : l) {
+        ss.latent_piece.push_back(piece);
+        ss.latent_box.push_back(box);
+      }
   }
   std::int64_t dropped_hidden = 0, dropped_clipped = 0, dropped_point = 0;
   for (const auto& d : dropped) {
@@ -535,7 +589,31 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   stats.count("edges_culled_back", dropped_hidden);
   stats.count("edges_culled_outside_view", dropped_clipped);
   stats.count("edges_seen_end_on", dropped_point);
+  if (latent) {
+    stats.count("curves_latent", static_cast<std::int64_t>(ss.latent_box.size()));
+    ss.maker = std::move(maker);
+  }
   return ss;
+}
+
+void make_latent_curves(ScreenScene& ss, const std::vector<char>& wanted, int threads) {
+  std::vector<int> pick;
+  for (std::size_t i = 0; i < wanted.size(); ++i)
+    if (wanted[i]) pick.push_back(ss.latent_piece[i]);
+  const int n = static_cast<int>(pick.size()), size = 1024;
+  std::vector<std::vector<Curve>> made(static_cast<std::size_t>(chunk_count(n, size)));
+  parallel_chunks(n, size, threads, [&](int k, Chunk r) {
+    std::array<std::int64_t, 3> dropped{};   // (counted when it was left latent)
+    for (int i = r.begin; i < r.end; ++i) {
+      Curve c;
+      if (ss.maker->make(ss.facets, ss.maker->pieces[static_cast<std::size_t>(pick[i])], c, dropped))
+        made[static_cast<std::size_t>(k)].push_back(std::move(c));
+    }
+  });
+  for (std::vector<Curve>& m : made) std::move(m.begin(), m.end(), std::back_inserter(ss.curves));
+  std::vector<CGAL::Bbox_2>().swap(ss.latent_box);
+  std::vector<int>().swap(ss.latent_piece);
+  ss.maker.reset();
 }
 
 VISMAP_KERNEL_END

@@ -5,6 +5,7 @@
 #include <CGAL/Bbox_2.h>
 
 #include <algorithm>
+#include <memory>
 #include <vector>
 
 #include "arrangements/visibility_map.h"
@@ -50,15 +51,29 @@ struct Curve {
   CGAL::Bbox_2 box;
 };
 
+struct CurveMaker;   // (screen_scene.cpp: what making a curve from an edge piece needs)
+
 struct ScreenScene {
   std::vector<Facet> facets;
   std::vector<Curve> curves;
   int scale_exp = 0;             // screen coordinates are the spec's times 2^scale_exp
   const std::vector<Vec3>* world = nullptr;   // the input's vertices (canonical ids index them)
+  // Latent curves (lines only, when asked): edge pieces that are not drawn, each
+  // known by its box until make_latent_curves makes the ones a drawing needs.
+  std::vector<CGAL::Bbox_2> latent_box;
+  std::vector<int> latent_piece;
+  std::shared_ptr<const CurveMaker> maker;
 };
 
+// With `latent`, curves that are not drawn are left latent (a lines-only drawing
+// needs only those near a drawn one: most of a smooth mesh's edges are not).
 ScreenScene make_screen_scene(const Scene& scene, const View& view, const EngineOptions& opt,
-                              Stats& stats);
+                              Stats& stats, bool latent = false);
+
+// Makes the latent curves whose flag in `wanted` is set, appended to ss.curves in
+// latent order (as make_screen_scene would have made them); no curve is latent
+// after it. Chunks of them in parallel.
+void make_latent_curves(ScreenScene& ss, const std::vector<char>& wanted, int threads);
 
 // The intersection line from s to t of facets fa and fb (of faces face_a, face_b):
 // a curve drawn for both faces.
