@@ -9,8 +9,8 @@
 
 #include <array>
 #include <cmath>
-#include <memory>
-#include <mutex>
+#include <cstdint>
+#include <vector>
 
 #include "engine/exact_kernel.h"
 #include "engine/scene.h"
@@ -70,46 +70,65 @@ class PerspectiveRep final : public ExactRep {
   int k_;
 };
 
-// The depth plane z = a x + b y + c through three screen points (not collinear on
-// screen): what its three coefficients share. The points are kept once, and
-// the exact plane is computed once, for whichever coefficient is asked first
-// (CGAL evaluates each coefficient once, but two threads may ask for two of
-// them at the same time: std::call_once).
-struct PlanePoints {
-  std::array<FT, 9> pts;                            // x, y, z of the three points
-  std::unique_ptr<std::array<mpq_class, 3>> exact;  // a, b, c, once computed
-  std::once_flag once;
-  const mpq_class& coefficient(int which) {
-    std::call_once(once, [this] {
-      exact = std::make_unique<std::array<mpq_class, 3>>();
-      mpq_class q[9];
-      for (int k = 0; k < 9; ++k) q[k] = to_mpq(pts[k]);
-      const mpq_class x1 = q[3] - q[0], y1 = q[4] - q[1], z1 = q[5] - q[2];
-      const mpq_class x2 = q[6] - q[0], y2 = q[7] - q[1], z2 = q[8] - q[2];
-      const mpq_class nz = x1 * y2 - y1 * x2;
-      auto& e = *exact;
-      e[0] = (z1 * y2 - y1 * z2) / nz;
-      e[1] = (x1 * z2 - z1 * x2) / nz;
-      e[2] = q[2] - e[0] * q[0] - e[1] * q[1];
-    });
-    return (*exact)[which];
+#endif
+
+// What the facets' exact depth planes are computed from, on demand: the
+// input's vertices, the view, the screen scale, and per facet three input
+// vertices that span its plane in the world. (The screen scene owns it: it
+// outlives every plane.)
+struct PlaneSource {
+  const std::vector<Vec3>* vertices = nullptr;
+  std::array<std::array<double, 4>, 4> m{};   // the view matrix
+  bool perspective = false;
+  int k = 0;                                   // the screen scale: times 2^k
+  std::vector<std::array<std::uint32_t, 3>> spanning;
+
+  // Facet f's depth plane z = a x + b y + c on the (scaled) screen: the image of
+  // its world plane. The three corners' homogeneous images H_i = M (p_i, 1) are
+  // exact binary floats; the plane through them is pi with pi_c = (-1)^c times
+  // the 3x3 minor without column c (pi . H_i = 0), so pi_x x + pi_y y + pi_z z +
+  // pi_w = 0 on screen, and with coordinates times 2^k: a = -pi_x / pi_z,
+  // b = -pi_y / pi_z, c = -2^k pi_w / pi_z (pi_z != 0: the facet is not edge-on).
+  // No gcd before the three quotients.
+  std::array<mpq_class, 3> plane(std::size_t f) const {
+    using M = CGAL::Mpzf;
+    std::array<std::array<M, 4>, 3> h;
+    for (int i = 0; i < 3; ++i) {
+      const Vec3& p = (*vertices)[spanning[f][static_cast<std::size_t>(i)]];
+      for (int r = 0; r < 4; ++r)
+        h[i][r] = r == 3 && !perspective ? M(1.0)
+                                         : M(m[r][0]) * M(p.x) + M(m[r][1]) * M(p.y) + M(m[r][2]) * M(p.z) + M(m[r][3]);
+    }
+    auto minor = [&](int c0, int c1, int c2) {
+      return h[0][c0] * (h[1][c1] * h[2][c2] - h[1][c2] * h[2][c1]) -
+             h[0][c1] * (h[1][c0] * h[2][c2] - h[1][c2] * h[2][c0]) +
+             h[0][c2] * (h[1][c0] * h[2][c1] - h[1][c1] * h[2][c0]);
+    };
+    const mpq_class px(minor(1, 2, 3)), py(-minor(0, 2, 3)), pz(minor(0, 1, 3)), pw(-minor(0, 1, 2));
+    std::array<mpq_class, 3> abc{-px / pz, -py / pz, -pw / pz};
+    if (k > 0) mpq_mul_2exp(abc[2].get_mpq_t(), abc[2].get_mpq_t(), static_cast<unsigned long>(k));
+    if (k < 0) mpq_div_2exp(abc[2].get_mpq_t(), abc[2].get_mpq_t(), static_cast<unsigned long>(-k));
+    return abc;
   }
 };
 
-// One coefficient of such a plane: its interval from the points' intervals.
+#ifndef VISMAP_FLOAT_KERNEL
+// One coefficient of a facet's depth plane: its interval from the screen points'
+// intervals now, its exact value from the world on demand (each coefficient on
+// its own: most are never needed exactly, and no state is shared between them).
 class PlaneRep final : public ExactRep {
  public:
-  PlaneRep(const Interval& i, std::shared_ptr<PlanePoints> plane, int which)
-      : ExactRep(i), plane_(std::move(plane)), which_(which) {}
+  PlaneRep(const Interval& i, const PlaneSource& source, std::uint32_t facet, int which)
+      : ExactRep(i), source_(&source), facet_(facet), which_(which) {}
   void update_exact() const override {
-    auto* pet = new Indirect(plane_->coefficient(which_));
+    auto* pet = new Indirect(source_->plane(facet_)[static_cast<std::size_t>(which_)]);
     this->keep_at(pet);
     this->set_ptr(pet);
-    plane_.reset();   // (the exact value is kept: the points are no longer needed here)
   }
 
  private:
-  mutable std::shared_ptr<PlanePoints> plane_;
+  const PlaneSource* source_;
+  std::uint32_t facet_;
   int which_;   // 0: a, 1: b, 2: c
 };
 #endif
@@ -158,7 +177,8 @@ inline int projected_sign(const std::array<double, 4>& row, const Vec3& p) {
 // the projected area (non-zero): z = a x + b y + c. Each coefficient is a lazy
 // leaf whose interval comes from the points' intervals; false where those
 // intervals cannot tell the area's sign (the caller then tries other points).
-inline bool depth_plane(const P3& u, const P3& v, const P3& w, FT& a, FT& b, FT& c) {
+inline bool depth_plane(const P3& u, const P3& v, const P3& w, const PlaneSource& source, std::uint32_t facet, FT& a,
+                        FT& b, FT& c) {
 #ifdef VISMAP_FLOAT_KERNEL
   const double x1 = v.x - u.x, y1 = v.y - u.y, z1 = v.z - u.z, x2 = w.x - u.x, y2 = w.y - u.y, z2 = w.z - u.z;
   const double nz = x1 * y2 - y1 * x2;
@@ -180,11 +200,9 @@ inline bool depth_plane(const P3& u, const P3& v, const P3& w, FT& a, FT& b, FT&
     ib = (x1 * z2 - z1 * x2) / nz;
     ic = z0 - ia * x0 - ib * y0;
   }
-  auto plane = std::make_shared<PlanePoints>();
-  plane->pts = {u.x, u.y, u.z, v.x, v.y, v.z, w.x, w.y, w.z};
-  a = FT(new PlaneRep(ia, plane, 0));
-  b = FT(new PlaneRep(ib, plane, 1));
-  c = FT(new PlaneRep(ic, std::move(plane), 2));
+  a = FT(new PlaneRep(ia, source, facet, 0));
+  b = FT(new PlaneRep(ib, source, facet, 1));
+  c = FT(new PlaneRep(ic, source, facet, 2));
   return true;
 #endif
 }

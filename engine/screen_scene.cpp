@@ -122,7 +122,8 @@ struct Spanning {
   Vec3 o, p, q;
 };
 
-Spanning spanning_corners(const Scene& scene, const WorldFacet& w) {
+// Their input vertex ids.
+std::array<std::uint32_t, 3> spanning_ids(const Scene& scene, const WorldFacet& w) {
   const auto& v = w.v;
   const Vec3& o = scene.vertices[v[0]];
   for (std::size_t k = 1; k + 1 < v.size(); ++k) {
@@ -131,12 +132,17 @@ Spanning spanning_corners(const Scene& scene, const WorldFacet& w) {
       CGAL::Protect_FPU_rounding<true> upward;
       const auto n = world::normal_of<Interval>(o, p, q);
       if (std::any_of(n.begin(), n.end(), [](const Interval& x) { return x.inf() > 0 || x.sup() < 0; }))
-        return {o, p, q};
+        return {v[0], v[k], v[k + 1]};
     }
     const auto n = world::normal_of<CGAL::Mpzf>(o, p, q);
-    if (n[0].sign() != 0 || n[1].sign() != 0 || n[2].sign() != 0) return {o, p, q};
+    if (n[0].sign() != 0 || n[1].sign() != 0 || n[2].sign() != 0) return {v[0], v[k], v[k + 1]};
   }
-  return {o, o, o};   // (a planar facet always has a spanning triple)
+  return {v[0], v[0], v[0]};   // (a planar facet always has a spanning triple)
+}
+
+Spanning spanning_corners(const Scene& scene, const WorldFacet& w) {
+  const auto ids = spanning_ids(scene, w);
+  return {scene.vertices[ids[0]], scene.vertices[ids[1]], scene.vertices[ids[2]]};
 }
 
 // The crease test n1.n2 < c |n1||n2|, exactly, without square roots: with
@@ -393,6 +399,15 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   auto image = [&](std::uint32_t id) -> const P3& { return M.image(id); };
   auto clip_point = [&](std::uint32_t a, std::uint32_t b) { return M.clip_point(a, b); };
 
+  // The exact depth planes, where a predicate needs one, are computed from the
+  // world (lazy_leaves.h): from the input vertices that span each facet's plane.
+  auto planes = std::make_shared<PlaneSource>();
+  planes->vertices = &scene.vertices;
+  planes->m = view.m;
+  planes->perspective = view.perspective;
+  planes->k = k;
+  planes->spanning.resize(wf.facets.size());
+  ss.planes = planes;
   ss.facets.resize(wf.facets.size());
   std::vector<std::vector<P3>>& clip_edges = M.clip_edges;  // near-plane cuts
   clip_edges.resize(wf.facets.size());
@@ -407,8 +422,10 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     f.face = w.face;
     f.planar = w.planar;
     const std::size_t n = w.v.size();
-    f.v.reserve(n + 1);
-    f.id.reserve(n + 1);
+    // (A convex polygon cut by the near plane gains at most one corner.)
+    const bool whole = std::all_of(w.v.begin(), w.v.end(), [&](std::uint32_t a) { return in_front(a); });
+    f.v.reserve(whole ? n : n + 1);
+    f.id.reserve(whole ? n : n + 1);
     for (std::size_t k = 0; k < n; ++k) {
       std::uint32_t a = w.v[k], b = w.v[(k + 1) % n];
       if (in_front(a)) { f.v.push_back(image(a)); f.id.push_back(a); }
@@ -467,8 +484,10 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     // depth = a x + b y + c from three vertices that are not collinear on screen:
     // lazy leaves whose intervals come from the vertices' (exact only on demand),
     // or, where no three vertices' intervals can tell, computed once in GMP.
+    planes->spanning[fi] = spanning_ids(scene, w);
     bool lazy = false;
-    for (std::size_t k = 1; k + 1 < nv && !lazy; ++k) lazy = depth_plane(f.v[0], f.v[k], f.v[k + 1], f.a, f.b, f.c);
+    for (std::size_t k = 1; k + 1 < nv && !lazy; ++k)
+      lazy = depth_plane(f.v[0], f.v[k], f.v[k + 1], *planes, static_cast<std::uint32_t>(fi), f.a, f.b, f.c);
     if (lazy) return;
     const Num x0 = num(f.v[0].x), y0 = num(f.v[0].y), z0 = num(f.v[0].z);
     for (std::size_t k = 1; k + 1 < nv; ++k) {

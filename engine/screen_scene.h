@@ -13,6 +13,12 @@
 #include "engine/visibility.h"
 #include "engine/world_facets.h"
 
+namespace vismap::exact {
+VISMAP_KERNEL_BEGIN
+struct PlaneSource;   // (engine/lazy_leaves.h: what the exact depth planes are computed from)
+VISMAP_KERNEL_END
+}  // namespace vismap::exact
+
 namespace vismap::engine {
 using namespace vismap::exact;
 VISMAP_KERNEL_BEGIN
@@ -54,6 +60,7 @@ struct Curve {
 struct CurveMaker;   // (screen_scene.cpp: what making a curve from an edge piece needs)
 
 struct ScreenScene {
+  std::shared_ptr<const PlaneSource> planes;   // (first: every depth plane refers to it)
   std::vector<Facet> facets;
   std::vector<Curve> curves;
   int scale_exp = 0;             // screen coordinates are the spec's times 2^scale_exp
