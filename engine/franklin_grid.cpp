@@ -596,6 +596,11 @@ bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3
 // plane: they never pierce each other. (The commonest pair on a mesh, told
 // without arithmetic.)
 bool share_an_edge(const Facet& A, const Facet& B) {
+  if (A.id.size() == 3 && B.id.size() == 3) {   // two corners of a triangle make an edge of it
+    int shared = 0;
+    for (const long p : A.id) shared += p >= 0 && (p == B.id[0] || p == B.id[1] || p == B.id[2]);
+    return shared >= 2;
+  }
   const std::size_t n = A.id.size();
   for (std::size_t k = 0; k < n; ++k) {
     const long p = A.id[k], q = A.id[(k + 1) % n];   // (an edge of A)

@@ -125,6 +125,9 @@ struct Spanning {
 // Their input vertex ids.
 std::array<std::uint32_t, 3> spanning_ids(const Scene& scene, const WorldFacet& w) {
   const auto& v = w.v;
+  // A triangle spans its plane, or nothing does (then its normal is zero from
+  // any corners: a degenerate triangle is never an occluder, nor a crease).
+  if (v.size() == 3) return {v[0], v[1], v[2]};
   const Vec3& o = scene.vertices[v[0]];
   for (std::size_t k = 1; k + 1 < v.size(); ++k) {
     const Vec3 &p = scene.vertices[v[k]], &q = scene.vertices[v[k + 1]];
