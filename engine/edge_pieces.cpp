@@ -117,6 +117,9 @@ bool cells_from_intervals(const Vec3& p, const Vec3& q, int k, const Cells& cell
 std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, int cell_bits, int threads) {
   const Cells cells(cell_bits);
   std::vector<Edge> edges;
+  std::size_t corners = 0;
+  for (const auto& f : wf.facets) corners += f.v.size();
+  edges.reserve(corners);
   for (int f = 0; f < static_cast<int>(wf.facets.size()); ++f) {
     const auto& v = wf.facets[f].v;
     for (std::size_t i = 0; i < v.size(); ++i) {
@@ -140,10 +143,11 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
     std::uint32_t edge;
     Edge e;
   };
+  // Each edge's line cells, in parallel (chunks of edges, each slot its own).
   std::vector<Slot> slots(edges.size());
-  {
+  parallel_chunks(static_cast<int>(edges.size()), 8192, threads, [&](int, Chunk r) {
     CGAL::Protect_FPU_rounding<true> upward;
-    for (std::uint32_t i = 0; i < edges.size(); ++i) {
+    for (auto i = static_cast<std::uint32_t>(r.begin); i < static_cast<std::uint32_t>(r.end); ++i) {
       const Edge& e = edges[i];
       const std::uint32_t lo = std::min(e.p, e.q), hi = std::max(e.p, e.q);
       std::uint64_t h;
@@ -153,7 +157,7 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
       }
       slots[i] = Slot{h, std::uint64_t(lo) << 32 | hi, i, e};
     }
-  }
+  });
   engine::parallel_sort(slots.begin(), slots.end(), [](const Slot& x, const Slot& y) {
     if (x.hash != y.hash) return x.hash < y.hash;
     if (x.pair != y.pair) return x.pair < y.pair;
