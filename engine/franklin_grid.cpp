@@ -376,7 +376,10 @@ bool bucket_facet(Grid& g, const ScreenScene& ss, int fi, int ix, int iy, std::i
   // its plane, so what is behind it cannot hide them. A non-planar polygon's
   // fan piece can be in front of its own face's edge while another face,
   // behind the piece, still hides that edge (no face hides its own edges).
-  bool covers = f.planar && std::all_of(c.begin(), c.end(), [&](const Corner& p) { return strictly_inside(f, p); });
+  // (A corner strictly inside the facet lies inside its box: a cell the box does
+  // not hold is not covered, told without a predicate. Most are not, on a mesh.)
+  const bool boxed = f.box.xmin() <= c[0].x && c[2].x <= f.box.xmax() && f.box.ymin() <= c[0].y && c[2].y <= f.box.ymax();
+  bool covers = f.planar && boxed && std::all_of(c.begin(), c.end(), [&](const Corner& p) { return strictly_inside(f, p); });
   if (!covers) { cell.facets.push_back(fi); return true; }
   ++blockers;
   if (cell.blocker < 0 || behind_throughout(ss.facets[cell.blocker], f, c)) { cell.blocker = fi; return true; }
