@@ -10,6 +10,7 @@
 
 #include "arrangements/visibility_map.h"
 #include "engine/exact_kernel.h"
+#include "engine/small_ints.h"
 #include "engine/visibility.h"
 #include "engine/world_facets.h"
 
@@ -47,8 +48,8 @@ struct Facet {
 struct Curve {
   P3 s, t;                       // screen end points with depth
   long vs = -1, vt = -1;         // end point identity (canonical vertex id) or -1
-  std::vector<int> sharers;      // facets whose boundary it is (for intersections: the two facets)
-  std::vector<int> sharer_edge;  // per sharer: k where its edge v[k] -> v[k+1] holds the curve
+  SmallInts sharers;             // facets whose boundary it is (for intersections: the two facets)
+  SmallInts sharer_edge;         // per sharer: k where its edge v[k] -> v[k+1] holds the curve
                                  // (-1: not known, as on a facet cut at the near plane)
   std::vector<int> faces;        // faces written in the JSON, ascending; empty = never drawn
   EdgeKind kind = EdgeKind::Border;
