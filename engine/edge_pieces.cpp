@@ -252,11 +252,9 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
   for (std::size_t f = 0; f < wf.facets.size(); ++f) first[f + 1] += first[f];
   std::vector<std::uint32_t> place(pieces.size());
   for (std::uint32_t i = 0; i < pieces.size(); ++i) place[first[pieces[i].sharers[0].facet]++] = i;
-  // Copied, not moved: each sharers list is then allocated in the final order,
-  // next to its neighbours', and read in sequence later.
   std::vector<WorldPiece> ordered;
   ordered.reserve(pieces.size());
-  for (std::uint32_t i : place) ordered.push_back(pieces[i]);
+  for (std::uint32_t i : place) ordered.push_back(std::move(pieces[i]));
   return ordered;
 }
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "engine/small_vec.h"
 #include "engine/world_facets.h"
 
 namespace vismap::engine {
@@ -17,7 +18,7 @@ struct Sharer {
 
 struct WorldPiece {
   std::uint32_t a, b;             // canonical vertex ids of the end points
-  std::vector<Sharer> sharers;    // every facet edge covering the piece
+  SmallVec<Sharer, 2> sharers;    // every facet edge covering the piece (mostly one or two)
 };
 
 // Pieces in the order of their first sharing facet (then deterministic). cell_bits sets how finely lines

@@ -10,7 +10,7 @@
 
 #include "arrangements/visibility_map.h"
 #include "engine/exact_kernel.h"
-#include "engine/small_ints.h"
+#include "engine/small_vec.h"
 #include "engine/visibility.h"
 #include "engine/world_facets.h"
 
