@@ -120,7 +120,9 @@ inline bool is_vertex_of(const P3& p, const Facet& G) {
 // Relative to the plane of facet G (index g): kPos = strictly behind (deeper),
 // kNeg = strictly in front (nearer); 0: in the plane. `cut_on[k]` (may be empty)
 // names a facet whose plane vertex k is known to lie on (it was cut there).
-inline int sides_of_plane(const std::vector<P3>& v, const std::vector<int>& cut_on, int g, const Facet& G) {
+// (Points: a fragment's own points, or a facet's corners.)
+template <class Points>
+int sides_of_plane(const Points& v, const std::vector<int>& cut_on, int g, const Facet& G) {
   int s = 0;
   for (std::size_t k = 0; k < v.size(); ++k) {
     if (!cut_on.empty() && cut_on[k] == g) continue;

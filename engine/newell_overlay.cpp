@@ -112,7 +112,8 @@ class BoxGrid {
 // The chord the line f = 0 cuts from a convex polygon that has vertices strictly
 // on both sides of it: its two boundary points (vertices on the line, or where
 // edges cross it), as exact leaves (x, y).
-std::array<std::pair<FT, FT>, 2> chord(const std::vector<P3>& v, const Line& f) {
+template <class Points>
+std::array<std::pair<FT, FT>, 2> chord(const Points& v, const Line& f) {
   const std::size_t n = v.size();
   std::vector<CGAL::Sign> sg(n);
   for (std::size_t k = 0; k < n; ++k) sg[k] = f.sign_at(v[k]);

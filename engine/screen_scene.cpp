@@ -250,7 +250,7 @@ struct CurveMaker {
   std::vector<WorldPiece> pieces;
   std::vector<std::uint32_t> used;    // place -> input index: vertices in the order facets first use them
   std::vector<std::uint32_t> local;   // input index -> place in used
-  std::vector<P3> sv;                 // images, by place
+  const P3* sv = nullptr;             // images, by place (the screen scene's table)
   std::vector<char> front;            // in front of the near plane, by place
   std::vector<FT> hz;                 // homogeneous Z, by place (perspective: the near plane is Z = 0)
   std::vector<std::vector<P3>> clip_edges;   // per facet: its cut by the near plane
@@ -365,8 +365,9 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   const int k = M.k = ss.scale_exp = screen_scale(scene, used, view);
   std::vector<FT>& hz = M.hz;   // homogeneous Z, for clipping at the near plane (perspective)
   if (view.perspective) hz.resize(used.size());
-  std::vector<P3>& sv = M.sv;
+  std::vector<P3>& sv = ss.images;
   sv.resize(used.size());
+  M.sv = sv.data();
   std::vector<char>& front = M.front;
   front.assign(used.size(), 0);
   std::vector<std::int8_t> zsign(used.size(), 1);   // sign of Z (perspective): the near plane is Z = 0
@@ -425,15 +426,11 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     f.face = w.face;
     f.planar = w.planar;
     const std::size_t n = w.v.size();
-    // (A convex polygon cut by the near plane gains at most one corner.)
-    const bool whole = std::all_of(w.v.begin(), w.v.end(), [&](std::uint32_t a) { return in_front(a); });
-    f.v.reserve(whole ? n : n + 1);
-    f.id.reserve(whole ? n : n + 1);
     for (std::size_t k = 0; k < n; ++k) {
       std::uint32_t a = w.v[k], b = w.v[(k + 1) % n];
-      if (in_front(a)) { f.v.push_back(image(a)); f.id.push_back(a); }
+      if (in_front(a)) { f.v.refer(image(a)); f.id.push_back(a); }
       if (in_front(a) != in_front(b)) {
-        f.v.push_back(in_front(a) ? clip_point(a, b) : clip_point(b, a));
+        f.v.keep(in_front(a) ? clip_point(a, b) : clip_point(b, a));
         f.id.push_back(-1);
         // The cut runs from where the polygon leaves the front half-space to where it re-enters.
         if (in_front(a)) clip_edges[fi].push_back(f.v.back());

@@ -3,8 +3,10 @@
 // scene does not need is dropped and counted. Internal to the engine (CGAL types).
 #pragma once
 #include <CGAL/Bbox_2.h>
+#include <boost/iterator/indirect_iterator.hpp>
 
 #include <algorithm>
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -26,10 +28,38 @@ VISMAP_KERNEL_BEGIN
 
 enum class Facing : std::uint8_t { Front, Back, EdgeOn };
 
+// A facet's corners, read as a sequence of points: the vertex images they are
+// (the screen scene's table, which outlives the facets) referred to, not copied
+// (a copy is four counted handles); a corner the near plane's cut made is kept
+// here. Inline up to four corners.
+class Corners {
+ public:
+  using Iterator = boost::indirect_iterator<const P3* const*>;
+  const P3& operator[](std::size_t k) const { return *at_[k]; }
+  std::size_t size() const { return at_.size(); }
+  bool empty() const { return at_.empty(); }
+  const P3& front() const { return *at_[0]; }
+  const P3& back() const { return *at_[at_.size() - 1]; }
+  Iterator begin() const { return Iterator(at_.begin()); }
+  Iterator end() const { return Iterator(at_.end()); }
+  void refer(const P3& image) { at_.push_back(&image); }
+  void keep(P3 cut) {   // (at most two per facet: a convex polygon's cut by a plane)
+    if (!cut_) cut_ = std::make_unique<std::array<P3, 2>>();
+    (*cut_)[cuts_] = std::move(cut);
+    at_.push_back(&(*cut_)[cuts_++]);
+  }
+  void clear() { at_.clear(); }
+
+ private:
+  SmallVec<const P3*, 4> at_;
+  std::unique_ptr<std::array<P3, 2>> cut_;
+  int cuts_ = 0;
+};
+
 struct Facet {
   int face = -1;                 // input face index
-  std::vector<P3> v;             // convex polygon, screen space, input order
-  std::vector<long> id;          // id[k]: v[k]'s canonical vertex id, or -1 where the near
+  Corners v;                     // convex polygon, screen space, input order
+  SmallVec<long, 4> id;          // id[k]: v[k]'s canonical vertex id, or -1 where the near
                                  // plane cut the polygon (as Curve::vs): connectivity answers
                                  // some predicates without arithmetic
   Facing facing = Facing::EdgeOn;
@@ -62,6 +92,7 @@ struct CurveMaker;   // (screen_scene.cpp: what making a curve from an edge piec
 
 struct ScreenScene {
   std::shared_ptr<const PlaneSource> planes;   // (first: every depth plane refers to it)
+  std::vector<P3> images;        // the used vertices' images (before the facets: they refer to them)
   std::vector<Facet> facets;
   std::vector<Curve> curves;
   int scale_exp = 0;             // screen coordinates are the spec's times 2^scale_exp
