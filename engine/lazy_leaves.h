@@ -18,10 +18,6 @@
 namespace vismap::exact {
 VISMAP_KERNEL_BEGIN
 
-#ifndef VISMAP_FLOAT_KERNEL
-using ExactRep = CGAL::Lazy_exact_nt_rep<mpq_class>;
-static_assert(std::is_same_v<FT, CGAL::Lazy_exact_nt<mpq_class>>, "the leaves below build mpq_class values");
-
 // (row . (p, 1)) * 2^k exactly, as a binary float of any length (sums and
 // products of doubles: no division, no gcd).
 inline CGAL::Mpzf projected_mpzf(const std::array<double, 4>& row, const Vec3& p, int k) {
@@ -32,56 +28,19 @@ inline CGAL::Mpzf projected_mpzf(const std::array<double, 4>& row, const Vec3& p
   return s;
 }
 
-// A projected coordinate of an input vertex: the interval of its exact value (as
-// tight as it can be: the exact value rounded down and up), the rational on demand.
-class ProjectedRep final : public ExactRep {
- public:
-  ProjectedRep(const Interval& i, const std::array<double, 4>& row, const Vec3& p, int k)
-      : ExactRep(i), row_(&row), p_(p), k_(k) {}
-  void update_exact() const override {
-    auto* pet = new Indirect(mpq_class(projected_mpzf(*row_, p_, k_)));
-    this->keep_at(pet);
-    this->set_ptr(pet);
-  }
-
- private:
-  const std::array<double, 4>* row_;   // the view matrix's row (it outlives the run)
-  Vec3 p_;
-  int k_;                              // the screen scale: times 2^k
-};
-
-// A perspective screen coordinate of an input vertex, (N / W) * 2^k with N and W
-// rows of the view matrix applied to it: the interval of the quotient of the
-// two exact binary floats' intervals now, the rational only on demand.
-class PerspectiveRep final : public ExactRep {
- public:
-  PerspectiveRep(const Interval& i, const std::array<double, 4>& n, const std::array<double, 4>& w, const Vec3& p,
-                 int k)
-      : ExactRep(i), n_(&n), w_(&w), p_(p), k_(k) {}
-  void update_exact() const override {
-    auto* pet = new Indirect(mpq_class(projected_mpzf(*n_, p_, k_)) / mpq_class(projected_mpzf(*w_, p_, 0)));
-    this->keep_at(pet);
-    this->set_ptr(pet);
-  }
-
- private:
-  const std::array<double, 4>*n_, *w_;   // the view matrix's rows (they outlive the run)
-  Vec3 p_;
-  int k_;
-};
-
-#endif
-
-// What the facets' exact depth planes are computed from, on demand: the
-// input's vertices, the view, the screen scale, and per facet three input
-// vertices that span its plane in the world. (The screen scene owns it: it
-// outlives every plane.)
-struct PlaneSource {
+// What the lazy leaves' exact values are computed from, on demand: the input's
+// vertices, the view, the screen scale, and per facet three input vertices that
+// span its plane in the world. (The screen scene owns it: it outlives every
+// leaf, which refers to it instead of keeping copies.)
+struct ExactSource {
   const std::vector<Vec3>* vertices = nullptr;
   std::array<std::array<double, 4>, 4> m{};   // the view matrix
   bool perspective = false;
   int k = 0;                                   // the screen scale: times 2^k
   std::vector<std::array<std::uint32_t, 3>> spanning;
+
+  // Row r of the view applied to input vertex v, times 2^k if scaled (Mpzf below).
+  CGAL::Mpzf row_at(int r, std::uint32_t v, bool scaled) const;
 
   // Facet f's depth plane z = a x + b y + c on the (scaled) screen: the image of
   // its world plane. The three corners' homogeneous images H_i = M (p_i, 1) are
@@ -112,13 +71,62 @@ struct PlaneSource {
   }
 };
 
+inline CGAL::Mpzf ExactSource::row_at(int r, std::uint32_t v, bool scaled) const {
+  return projected_mpzf(m[static_cast<std::size_t>(r)], (*vertices)[v], scaled ? k : 0);
+}
+
+#ifndef VISMAP_FLOAT_KERNEL
+using ExactRep = CGAL::Lazy_exact_nt_rep<mpq_class>;
+static_assert(std::is_same_v<FT, CGAL::Lazy_exact_nt<mpq_class>>, "the leaves below build mpq_class values");
+
+// A projected coordinate of an input vertex: the interval of its exact value (as
+// tight as it can be: the exact value rounded down and up), the rational on demand.
+// (64 bytes: the vertex and the row by number, everything else in the source.)
+class ProjectedRep final : public ExactRep {
+ public:
+  ProjectedRep(const Interval& i, const ExactSource& source, std::uint32_t vertex, int row, bool scaled)
+      : ExactRep(i), source_(&source), vertex_(vertex), row_(static_cast<std::int8_t>(row)), scaled_(scaled) {}
+  void update_exact() const override {
+    auto* pet = new Indirect(mpq_class(source_->row_at(row_, vertex_, scaled_)));
+    this->keep_at(pet);
+    this->set_ptr(pet);
+  }
+
+ private:
+  const ExactSource* source_;
+  std::uint32_t vertex_;
+  std::int8_t row_;
+  bool scaled_;   // times 2^k (the screen scale)
+};
+
+// A perspective screen coordinate of an input vertex, (N / W) * 2^k with N and W
+// rows of the view matrix applied to it: the interval of the quotient of the
+// two exact binary floats' intervals now, the rational only on demand.
+class PerspectiveRep final : public ExactRep {
+ public:
+  PerspectiveRep(const Interval& i, const ExactSource& source, std::uint32_t vertex, int row)
+      : ExactRep(i), source_(&source), vertex_(vertex), row_(static_cast<std::int8_t>(row)) {}
+  void update_exact() const override {
+    auto* pet = new Indirect(mpq_class(source_->row_at(row_, vertex_, true)) / mpq_class(source_->row_at(3, vertex_, false)));
+    this->keep_at(pet);
+    this->set_ptr(pet);
+  }
+
+ private:
+  const ExactSource* source_;
+  std::uint32_t vertex_;
+  std::int8_t row_;
+};
+
+#endif
+
 #ifndef VISMAP_FLOAT_KERNEL
 // One coefficient of a facet's depth plane: its interval from the screen points'
 // intervals now, its exact value from the world on demand (each coefficient on
 // its own: most are never needed exactly, and no state is shared between them).
 class PlaneRep final : public ExactRep {
  public:
-  PlaneRep(const Interval& i, const PlaneSource& source, std::uint32_t facet, int which)
+  PlaneRep(const Interval& i, const ExactSource& source, std::uint32_t facet, int which)
       : ExactRep(i), source_(&source), facet_(facet), which_(which) {}
   void update_exact() const override {
     auto* pet = new Indirect(source_->plane(facet_)[static_cast<std::size_t>(which_)]);
@@ -127,39 +135,44 @@ class PlaneRep final : public ExactRep {
   }
 
  private:
-  const PlaneSource* source_;
+  const ExactSource* source_;
   std::uint32_t facet_;
   int which_;   // 0: a, 1: b, 2: c
 };
 #endif
 
-// (row . (p, 1)) * 2^k as a kernel number: a double where it is one exactly
-// (views along an axis), else a lazy leaf of the exact value.
-inline FT projected_number(const std::array<double, 4>& row, const Vec3& p, int k) {
+// Row r of the view applied to input vertex v (times 2^k if scaled) as a kernel
+// number: a double where it is one exactly (views along an axis), else a lazy
+// leaf of the exact value.
+inline FT projected_number(const ExactSource& source, std::uint32_t v, int r, bool scaled) {
 #ifdef VISMAP_FLOAT_KERNEL
-  return std::ldexp(row[0] * p.x + row[1] * p.y + row[2] * p.z + row[3], k);
+  const auto& row = source.m[static_cast<std::size_t>(r)];
+  const Vec3& p = (*source.vertices)[v];
+  return std::ldexp(row[0] * p.x + row[1] * p.y + row[2] * p.z + row[3], scaled ? source.k : 0);
 #else
-  const CGAL::Mpzf s = projected_mpzf(row, p, k);
-  const std::pair<double, double> i = s.to_interval();
+  const std::pair<double, double> i = source.row_at(r, v, scaled).to_interval();
   if (i.first == i.second) return FT(i.first);
-  return FT(new ProjectedRep(Interval(i.first, i.second), row, p, k));
+  return FT(new ProjectedRep(Interval(i.first, i.second), source, v, r, scaled));
 #endif
 }
 
-// (n . (p, 1)) / (w . (p, 1)) * 2^k as a kernel number, w . (p, 1) > 0: a lazy
-// leaf (a double where its interval is one).
-inline FT perspective_number(const std::array<double, 4>& n, const std::array<double, 4>& w, const Vec3& p, int k) {
+// Row r over row 3 (W > 0) of the view applied to input vertex v, times 2^k, as
+// a kernel number: a lazy leaf (a double where its interval is one).
+inline FT perspective_number(const ExactSource& source, std::uint32_t v, int r) {
 #ifdef VISMAP_FLOAT_KERNEL
-  return std::ldexp((n[0] * p.x + n[1] * p.y + n[2] * p.z + n[3]) / (w[0] * p.x + w[1] * p.y + w[2] * p.z + w[3]), k);
+  const auto &n = source.m[static_cast<std::size_t>(r)], &w = source.m[3];
+  const Vec3& p = (*source.vertices)[v];
+  return std::ldexp((n[0] * p.x + n[1] * p.y + n[2] * p.z + n[3]) / (w[0] * p.x + w[1] * p.y + w[2] * p.z + w[3]),
+                    source.k);
 #else
-  const std::pair<double, double> in = projected_mpzf(n, p, k).to_interval(), iw = projected_mpzf(w, p, 0).to_interval();
+  const std::pair<double, double> in = source.row_at(r, v, true).to_interval(), iw = source.row_at(3, v, false).to_interval();
   Interval q;
   {
     CGAL::Protect_FPU_rounding<true> upward;
     q = Interval(in.first, in.second) / Interval(iw.first, iw.second);
   }
   if (q.is_point()) return FT(q.inf());
-  return FT(new PerspectiveRep(q, n, w, p, k));
+  return FT(new PerspectiveRep(q, source, v, r));
 #endif
 }
 
@@ -177,7 +190,7 @@ inline int projected_sign(const std::array<double, 4>& row, const Vec3& p) {
 // the projected area (non-zero): z = a x + b y + c. Each coefficient is a lazy
 // leaf whose interval comes from the points' intervals; false where those
 // intervals cannot tell the area's sign (the caller then tries other points).
-inline bool depth_plane(const P3& u, const P3& v, const P3& w, const PlaneSource& source, std::uint32_t facet, FT& a,
+inline bool depth_plane(const P3& u, const P3& v, const P3& w, const ExactSource& source, std::uint32_t facet, FT& a,
                         FT& b, FT& c) {
 #ifdef VISMAP_FLOAT_KERNEL
   const double x1 = v.x - u.x, y1 = v.y - u.y, z1 = v.z - u.z, x2 = w.x - u.x, y2 = w.y - u.y, z2 = w.z - u.z;

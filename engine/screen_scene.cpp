@@ -363,6 +363,16 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   ScreenScene ss;
   ss.world = &scene.vertices;
   const int k = M.k = ss.scale_exp = screen_scale(scene, used, view);
+  // Exact values, where a predicate needs one, are computed from the world
+  // (lazy_leaves.h): a vertex's coordinates from its input doubles, a facet's
+  // depth plane from the input vertices that span it.
+  auto exact = std::make_shared<ExactSource>();
+  exact->vertices = &scene.vertices;
+  exact->m = view.m;
+  exact->perspective = view.perspective;
+  exact->k = k;
+  exact->spanning.resize(wf.facets.size());
+  ss.exact = exact;
   std::vector<FT>& hz = M.hz;   // homogeneous Z, for clipping at the near plane (perspective)
   if (view.perspective) hz.resize(used.size());
   std::vector<P3>& sv = ss.images;
@@ -383,18 +393,18 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
       double d[3];
       for (int r = 0; r < 3; ++r)
         if (!exact_in_doubles(view.m[r], p, d[r])) d[r] = std::nan("");
-      auto coordinate = [&](int r) { return std::isnan(d[r]) ? projected_number(view.m[r], p, k) : scaled(d[r], k); };
+      auto coordinate = [&](int r) { return std::isnan(d[r]) ? projected_number(*exact, used[u], r, true) : scaled(d[r], k); };
       sv[u] = P3{coordinate(0), coordinate(1), coordinate(2)};
       return;
     }
     // Perspective: X/W, Y/W, Z/W as lazy leaves (the quotient's interval now),
     // kept where Z > 0 and W > 0 (decided exactly on binary floats).
-    hz[u] = projected_number(view.m[2], p, 0);   // (for clipping at the near plane)
+    hz[u] = projected_number(*exact, used[u], 2, false);   // (for clipping at the near plane)
     zsign[u] = static_cast<std::int8_t>(projected_sign(view.m[2], p));
     front[u] = zsign[u] > 0 && projected_sign(view.m[3], p) > 0;
     if (!front[u]) return;
-    sv[u] = P3{perspective_number(view.m[0], view.m[3], p, k), perspective_number(view.m[1], view.m[3], p, k),
-               perspective_number(view.m[2], view.m[3], p, k)};
+    sv[u] = P3{perspective_number(*exact, used[u], 0), perspective_number(*exact, used[u], 1),
+               perspective_number(*exact, used[u], 2)};
   };
   parallel_chunks(nu, 1024, threads, [&](int, Chunk r) {
     for (int u = r.begin; u < r.end; ++u) project_vertex(static_cast<std::uint32_t>(u));
@@ -403,15 +413,6 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   auto image = [&](std::uint32_t id) -> const P3& { return M.image(id); };
   auto clip_point = [&](std::uint32_t a, std::uint32_t b) { return M.clip_point(a, b); };
 
-  // The exact depth planes, where a predicate needs one, are computed from the
-  // world (lazy_leaves.h): from the input vertices that span each facet's plane.
-  auto planes = std::make_shared<PlaneSource>();
-  planes->vertices = &scene.vertices;
-  planes->m = view.m;
-  planes->perspective = view.perspective;
-  planes->k = k;
-  planes->spanning.resize(wf.facets.size());
-  ss.planes = planes;
   ss.facets.resize(wf.facets.size());
   std::vector<std::vector<P3>>& clip_edges = M.clip_edges;  // near-plane cuts
   clip_edges.resize(wf.facets.size());
@@ -484,10 +485,10 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     // depth = a x + b y + c from three vertices that are not collinear on screen:
     // lazy leaves whose intervals come from the vertices' (exact only on demand),
     // or, where no three vertices' intervals can tell, computed once in GMP.
-    planes->spanning[fi] = spanning_ids(scene, w);
+    exact->spanning[fi] = spanning_ids(scene, w);
     bool lazy = false;
     for (std::size_t k = 1; k + 1 < nv && !lazy; ++k)
-      lazy = depth_plane(f.v[0], f.v[k], f.v[k + 1], *planes, static_cast<std::uint32_t>(fi), f.a, f.b, f.c);
+      lazy = depth_plane(f.v[0], f.v[k], f.v[k + 1], *exact, static_cast<std::uint32_t>(fi), f.a, f.b, f.c);
     if (lazy) return;
     const Num x0 = num(f.v[0].x), y0 = num(f.v[0].y), z0 = num(f.v[0].z);
     for (std::size_t k = 1; k + 1 < nv; ++k) {

@@ -18,7 +18,7 @@
 
 namespace vismap::exact {
 VISMAP_KERNEL_BEGIN
-struct PlaneSource;   // (engine/lazy_leaves.h: what the exact depth planes are computed from)
+struct ExactSource;   // (engine/lazy_leaves.h: what lazy exact values are computed from)
 VISMAP_KERNEL_END
 }  // namespace vismap::exact
 
@@ -91,7 +91,7 @@ struct Curve {
 struct CurveMaker;   // (screen_scene.cpp: what making a curve from an edge piece needs)
 
 struct ScreenScene {
-  std::shared_ptr<const PlaneSource> planes;   // (first: every depth plane refers to it)
+  std::shared_ptr<const ExactSource> exact;   // (first: every lazy leaf refers to it)
   std::vector<P3> images;        // the used vertices' images (before the facets: they refer to them)
   std::vector<Facet> facets;
   std::vector<Curve> curves;
