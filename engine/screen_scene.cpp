@@ -611,7 +611,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   stats.count("edges_seen_end_on", dropped_point);
   if (latent) {
     stats.count("curves_latent", static_cast<std::int64_t>(ss.latent_box.size()));
-    ss.maker = std::move(maker);
+    if (!ss.latent_box.empty()) ss.maker = std::move(maker);   // (else freed now, as for a whole map)
   }
   return ss;
 }
