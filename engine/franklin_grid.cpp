@@ -118,13 +118,16 @@ bool behind_throughout(const Facet& f, const Facet& b, const std::array<Corner, 
   return true;
 }
 
+// Input vertex `id` (a canonical id, not -1).
+const Vec3& vertex_at(const std::vector<Vec3>& input, long id) { return input[static_cast<std::size_t>(id)]; }
+
 // Whether input vertex v lies in the plane of facet f, decided in world space
 // (the projection keeps planes and incidences) on binary floats, with no gcd:
 // det(q - o, r - o, v - o) for corners o, q, r of f that span its plane. False
 // when f has no three such corners in the input (cut at the near plane).
 bool in_world_plane(const std::vector<Vec3>& input, long v, const Facet& f) {
   using M = CGAL::Mpzf;
-  auto at = [&](long id) -> const Vec3& { return input[static_cast<std::size_t>(id)]; };
+  auto at = [&](long id) -> const Vec3& { return vertex_at(input, id); };
   const std::size_t m = f.id.size();
   std::size_t k0 = 0;
   while (k0 < m && f.id[k0] < 0) ++k0;
@@ -474,22 +477,27 @@ bool input_corners(const Facet& F) {
   return std::all_of(F.id.begin(), F.id.end(), [](long v) { return v >= 0; });
 }
 
-// Newell's test 3/4 in the world, on the input's doubles, for a triangle G:
-// whether every corner of F that G lacks lies on one closed side of G's plane. A
-// projection (parallel, or central for points in front of the eye) maps G's plane
-// to its screen plane and keeps each side of it on one side, so the answer is the
-// screen's.
-bool one_side_in_world(const Facet& F, const Facet& G, const std::vector<Vec3>& world) {
-  auto at = [&](long id) -> const Vec3& { return world[static_cast<std::size_t>(id)]; };
-  const Vec3 &o = at(G.id[0]), &a = at(G.id[1]), &b = at(G.id[2]);
+// Newell's tests 3 and 4: whether every corner k of F that G lacks (a shared
+// corner lies in G's plane, known without arithmetic) is on one closed side of
+// G's plane, side(k) its sign there.
+template <class Side>
+bool on_one_side(const Facet& F, const Facet& G, Side&& side) {
   bool pos = false, neg = false;
-  for (const long v : F.id) {
-    if (G.has_vertex(v)) continue;
-    const int s = world::orientation(o, a, b, at(v));
+  for (std::size_t k = 0; k < F.id.size(); ++k) {
+    if (G.has_vertex(F.id[k])) continue;
+    const int s = side(k);
     pos |= s > 0;
     neg |= s < 0;
   }
   return !(pos && neg);
+}
+
+// The same in the world, on the input's doubles, for a triangle G. A projection
+// (parallel, or central for points in front of the eye) maps G's plane to its
+// screen plane and keeps each side of it on one side, so the answer is the screen's.
+bool one_side_in_world(const Facet& F, const Facet& G, const std::vector<Vec3>& world) {
+  const Vec3 &o = vertex_at(world, G.id[0]), &a = vertex_at(world, G.id[1]), &b = vertex_at(world, G.id[2]);
+  return on_one_side(F, G, [&](std::size_t k) { return world::orientation(o, a, b, vertex_at(world, F.id[k])); });
 }
 
 // Triangles A = (v, a1, a2) and B = (v, b1, b2) that share only corner v and
@@ -499,7 +507,7 @@ bool one_side_in_world(const Facet& F, const Facet& G, const std::vector<Vec3>& 
 // leaves v the other way: if B's crossing of A's plane lies on the other side of
 // the line v-a1 than a2 does (told as sides of the plane through v, a1, b1).
 bool meet_only_at_shared_corner(const Facet& A, const Facet& B, const std::vector<Vec3>& world) {
-  auto at = [&](long id) -> const Vec3& { return world[static_cast<std::size_t>(id)]; };
+  auto at = [&](long id) -> const Vec3& { return vertex_at(world, id); };
   int k = 0;
   while (k < 3 && !B.has_vertex(A.id[k])) ++k;
   if (k == 3) return false;
@@ -527,16 +535,9 @@ bool apart_in_world(const Facet& A, const Facet& B, const std::vector<Vec3>& wor
 bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3>* world, P2& p, P2& q) {
   // Most pairs a grid offers are neighbours on a mesh, apart: told on doubles.
   if (world && apart_in_world(A, B, *world)) return false;
-  // Newell's tests 3 and 4: one facet entirely on one side of the other's plane.
+  // Newell's tests 3 and 4 on screen: one facet entirely on one side of the other's plane.
   auto one_side = [&](const Facet& F, const Facet& G) {
-    bool pos = false, neg = false;
-    for (std::size_t k = 0; k < F.v.size(); ++k) {
-      if (G.has_vertex(F.id[k])) continue;   // a shared corner: in G's plane, known without arithmetic
-      const CGAL::Sign s = depth_above(F.v[k], G, world, F.id[k]);
-      pos |= s == CGAL::POSITIVE;
-      neg |= s == CGAL::NEGATIVE;
-    }
-    return !(pos && neg);
+    return on_one_side(F, G, [&](std::size_t k) { return static_cast<int>(depth_above(F.v[k], G, world, F.id[k])); });
   };
   if (one_side(A, B) || one_side(B, A)) return false;
   // Corners the two share (by identity) lie on both planes, so on their crossing
@@ -788,10 +789,6 @@ void bucket_needed_curves(Grid& g, const ScreenScene& ss, const std::vector<char
 
 }  // namespace
 
-// Step 7: each curve goes to the cells it passes through, unless it lies wholly
-// behind the cell's blocker (7a-i); a curve listed nowhere is hidden (7b). For
-// the drawn lines alone: the drawn curves everywhere, the others only into cells
-// where a drawn one is (where they could meet it; cut_curves adds the rest it needs).
 namespace {
 
 // Per latent curve: whether its box reaches a cell that holds a drawn curve (the
@@ -810,6 +807,10 @@ std::vector<char> latent_near_drawn(const Grid& g, const ScreenScene& ss, int th
 
 }  // namespace
 
+// Step 7: each curve goes to the cells it passes through, unless it lies wholly
+// behind the cell's blocker (7a-i); a curve listed nowhere is hidden (7b). For
+// the drawn lines alone: the drawn curves everywhere, the others only into cells
+// where a drawn one is (where they could meet it; cut_curves adds the rest it needs).
 void bucket_curves(Grid& g, ScreenScene& ss, bool regions, int threads, Stats& stats) {
   std::int64_t listed = 0, hidden = 0;
   auto everywhere = [](int, int) { return true; };

@@ -556,8 +556,8 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   // are appended in piece order before the next: the curves are never held
   // twice (curves made in place instead would be default-made first, and their
   // placeholder numbers, one shared object, then released by every thread at once).
-  // Latent curves: only their boxes are kept (and the curve made for each, to
-  // tell whether it is drawn, reused).
+  // Latent curves: only their boxes are kept. (One Curve per chunk is made into
+  // again and again: make() sets every field.)
   const int np = static_cast<int>(pieces.size()), size = 1024, wave = 64;
   if (!latent) ss.curves.reserve(pieces.size() + ss.facets.size() / 8);   // (+ near-plane cuts; + intersection lines later)
   std::vector<std::array<std::int64_t, 3>> dropped(static_cast<std::size_t>(chunk_count(np, size)));
@@ -572,10 +572,8 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
       if (!latent) out.reserve(static_cast<std::size_t>(r.end - r.begin));
       Curve c;
       for (int i = r.begin; i < r.end; ++i) {
-        if (!latent) c = Curve();
         if (!M.make(ss.facets, pieces[static_cast<std::size_t>(i)], c, dropped[static_cast<std::size_t>(k)])) continue;
         if (latent && !c.drawn) left[static_cast<std::size_t>(j)].emplace_back(i, c.box);
-        else if (latent) out.push_back(c);
         else out.push_back(std::move(c));
       }
     });
