@@ -342,16 +342,22 @@ void add_edges(std::vector<MapPiece>& pieces, MapGraph& g, int threads) {
 
 }  // namespace
 
-void assemble_segments(std::vector<MapPiece>& pieces, VisibilityMap& map, int threads) {
+MapGraph graph_of_pieces(std::vector<MapPiece>& pieces, int threads) {
   MapGraph g;
   add_edges(pieces, g, threads);
-  write_segments_only(g, map, threads);
+  return g;
+}
+
+void assemble_segments(std::vector<MapPiece>& pieces, VisibilityMap& map, int threads) {
+  write_segments_only(graph_of_pieces(pieces, threads), map, threads);
 }
 
 void assemble_map(std::vector<MapPiece>& pieces, VisibilityMap& map, int threads) {
-  MapGraph g;
-  add_edges(pieces, g, threads);
+  MapGraph g = graph_of_pieces(pieces, threads);
+  finish_map(g, map, threads);
+}
 
+void finish_map(MapGraph& g, VisibilityMap& map, int threads) {
   Assembly a{g};
   a.sort_around_vertices();
   a.trace_cycles();

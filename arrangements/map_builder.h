@@ -20,6 +20,8 @@ struct MapPiece {
   EdgeKind kind = EdgeKind::Border;
   const std::vector<int>* faces = nullptr;
   int order_face = 0;                // lowest face index, for ties in depth
+  int line = -1;                     // the engine's curve it lies on (-1: not known): pieces
+                                     // of one curve are collinear, known without arithmetic
 };
 
 // Builds the planar arrangement of the pieces (CGAL Arrangement_2, overlaps
@@ -33,6 +35,8 @@ void build_map(std::vector<MapPiece>& pieces, VisibilityMap& map);
 // without a sweep: Franklin's pieces, which step 8 cut at every crossing. Throws
 // std::logic_error where the pieces break that promise in a way it detects.
 // Its sorts run on `threads` threads; the map is the same for every count.
+// (engine/franklin.cpp calls its two halves, graph_of_pieces and finish_map in
+// map_graph.h, to free its curves in between.)
 void assemble_map(std::vector<MapPiece>& pieces, VisibilityMap& map, int threads = 1);
 
 // The segments of that map alone (map.has_regions false), from the drawn pieces

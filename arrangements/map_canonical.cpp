@@ -58,7 +58,7 @@ Essential essential_vertices(const MapGraph& g) {
       // (Pieces of one curve are collinear by construction: the exact zero that
       // no filter settles is then never asked.)
       out.essential[w] = !(g.attrs[e1].same_as(g.attrs[e2]) &&
-                           ((g.attrs[e1].line != nullptr && g.attrs[e1].line == g.attrs[e2].line) ||
+                           ((g.attrs[e1].line >= 0 && g.attrs[e1].line == g.attrs[e2].line) ||
                             CGAL::orientation(g.points[other_end(e1, w)], g.points[w], g.points[other_end(e2, w)]) ==
                                 CGAL::COLLINEAR));
     }
@@ -143,7 +143,7 @@ EdgeAttr edge_attr(const std::vector<MapPiece>& pieces, const int* on_edge, std:
   const MapPiece& any = pieces[on_edge[0]];
   at.left = any.left;
   at.right = any.right;
-  at.line = any.s;
+  at.line = any.line;
   int winner = -1;
   P2 mid;
   bool have_mid = false;

@@ -21,8 +21,8 @@ struct EdgeAttr {
   EdgeKind kind = EdgeKind::Border;
   const std::vector<int>* faces = nullptr;
   int left = -1, right = -1;
-  const void* line = nullptr;   // the curve of a piece on it (its first end point): two
-                                // edges with one curve are collinear, known without arithmetic
+  int line = -1;                // the curve of a piece on it (MapPiece::line; -1: not known):
+                                // two edges with one curve are collinear, known without arithmetic
   bool same_as(const EdgeAttr& o) const {
     if (drawn != o.drawn || left != o.left || right != o.right) return false;
     return !drawn || (kind == o.kind && *faces == *o.faces);
@@ -55,6 +55,13 @@ struct MapGraph {
   int faces = 0;                            // face ids 0 .. faces-1
   int unbounded = -1;                       // the unbounded face's id
 };
+
+// The direct assembly (assemble_map) in two halves. The graph's vertices and
+// edges from the pieces, which it no longer needs once this returns (it keeps
+// pointers to their faces lists); then the faces traced and labelled and the map
+// written (throws std::logic_error where the pieces broke assemble_map's promise).
+MapGraph graph_of_pieces(std::vector<MapPiece>& pieces, int threads);
+void finish_map(MapGraph& g, VisibilityMap& map, int threads);
 
 // Labels the faces (throws std::logic_error where the halfedges disagree: an
 // engine bug), drops superfluous vertices, and writes the regions and segments

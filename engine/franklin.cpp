@@ -3,6 +3,9 @@
 // franklin_grid.cpp (2-9, 11) and arrangements/map_builder.cpp (10).
 
 #include "arrangements/map_builder.h"
+#ifndef VISMAP_FLOAT_KERNEL
+#include "arrangements/map_graph.h"   // (its graph has exact points)
+#endif
 #include "engine/franklin_grid.h"
 #include "engine/screen_scene.h"
 #include "engine/engine_run.h"
@@ -74,6 +77,10 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
     }
   build_map_from_floats(mp, map);
 #else
+  // Each curve's faces list is moved out of it: the map keeps it, while the
+  // curves go once the graph has its edges.
+  std::vector<std::vector<int>> faces(ss.curves.size());
+  for (std::size_t i = 0; i < faces.size(); ++i) faces[i] = std::move(ss.curves[i].faces);
   std::vector<MapPiece> mp;
   std::size_t total = 0;
   for (const std::vector<VisiblePiece>& chunk : pieces) total += chunk.size();
@@ -83,15 +90,21 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   for (std::vector<VisiblePiece>& chunk : pieces) {
     for (const VisiblePiece& p : chunk) {
       const Curve& c = ss.curves[p.curve];
-      mp.push_back(MapPiece{p.a, p.b, &c.s, &c.t, p.left, p.right, p.visible, p.visible && c.drawn, c.kind, &c.faces,
-                            c.order_face});
+      mp.push_back(MapPiece{p.a, p.b, &c.s, &c.t, p.left, p.right, p.visible, p.visible && c.drawn, c.kind,
+                            &faces[p.curve], c.order_face, p.curve});
     }
     std::vector<VisiblePiece>().swap(chunk);
   }
   PieceChunks().swap(pieces);
   std::vector<Facet>().swap(ss.facets);
-  if (opt.regions) assemble_map(mp, map, threads);
-  else assemble_segments(mp, map, threads);
+  MapGraph graph = graph_of_pieces(mp, threads);
+  // The graph holds what the map needs of the pieces and curves (their faces
+  // lists aside): they are freed before the faces are traced and the map is
+  // written, the peak (10^6 faces: hundreds of MB less).
+  std::vector<MapPiece>().swap(mp);
+  std::vector<Curve>().swap(ss.curves);
+  if (opt.regions) finish_map(graph, map, threads);
+  else write_segments_only(graph, map, threads);
 #endif
   unscale_map(map, ss.scale_exp);
   st.time("arrangement", clock.lap());

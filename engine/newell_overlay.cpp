@@ -526,6 +526,7 @@ std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Frag
       mp.order_face = cv.order_face;
       mp.s = &cv.s;
       mp.t = &cv.t;
+      mp.line = ci;
       out.push_back(std::move(mp));
       extend = true;
     }
