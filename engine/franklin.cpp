@@ -90,7 +90,7 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   for (std::vector<VisiblePiece>& chunk : pieces) {
     for (const VisiblePiece& p : chunk) {
       const Curve& c = ss.curves[p.curve];
-      mp.push_back(MapPiece{p.a, p.b, &c.s, &c.t, p.left, p.right, p.visible, p.visible && c.drawn, c.kind,
+      mp.push_back(MapPiece{p.a, p.b, c.s, c.t, p.left, p.right, p.visible, p.visible && c.drawn, c.kind,
                             &faces[p.curve], c.order_face, p.curve});
     }
     std::vector<VisiblePiece>().swap(chunk);

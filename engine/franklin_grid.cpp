@@ -157,11 +157,11 @@ CGAL::Sign depth_above(const P3& p, const Facet& f, const std::vector<Vec3>* wor
 // a cell's blocker.)
 bool curve_behind(const Curve& cv, const Facet& b, const std::vector<Vec3>* world) {
   // (Or all its depths beyond b's over the cell, which b covers: hidden there.)
-  if (std::min(approx_of(cv.s.z).inf(), approx_of(cv.t.z).inf()) > b.zhi) return true;
+  if (std::min(approx_of(cv.s->z).inf(), approx_of(cv.t->z).inf()) > b.zhi) return true;
   // An end point that is a corner of b lies in its plane: known without arithmetic
   // (the exact zero no filter can settle).
   if (b.has_vertex(cv.vs) || b.has_vertex(cv.vt)) return false;
-  return depth_above(cv.s, b, world, cv.vs) == CGAL::POSITIVE && depth_above(cv.t, b, world, cv.vt) == CGAL::POSITIVE;
+  return depth_above(*cv.s, b, world, cv.vs) == CGAL::POSITIVE && depth_above(*cv.t, b, world, cv.vt) == CGAL::POSITIVE;
 }
 
 // The segment s-t meets the closed cell (its bounding box is known to): not all
@@ -723,9 +723,11 @@ void add_intersection_lines(const Grid& g, ScreenScene& ss, int threads, Stats& 
   std::sort(found.begin(), found.end(), [](const Crossing& x, const Crossing& y) {
     return std::pair(x.fa, x.fb) < std::pair(y.fa, y.fb);
   });
+  std::deque<P3>& line_ends = ss.ends.emplace_back();
   for (const Crossing& c : found) {
     const Facet &A = ss.facets[c.fa], &B = ss.facets[c.fb];
-    ss.curves.push_back(intersection_curve(P3(c.p, A.depth_at(c.p)), P3(c.q, A.depth_at(c.q)), c.fa, c.fb, A.face, B.face));
+    ss.curves.push_back(
+        intersection_curve(P3(c.p, A.depth_at(c.p)), P3(c.q, A.depth_at(c.q)), c.fa, c.fb, A.face, B.face, line_ends));
   }
   stats.count("facet_pairs_tested", tested);
   stats.count("intersection_lines", static_cast<std::int64_t>(found.size()));
@@ -755,7 +757,7 @@ std::int64_t bucket(Grid& g, const ScreenScene& ss, int threads, Take&& take, In
         Cell& cell = g.at(ix, iy);
         // (A cell the double box reaches only by rounding may be kept: harmless,
         // cut points count only in the cell that holds them.)
-        if ((r.x0 != r.x1 || r.y0 != r.y1) && !meets_cell(cv.s, cv.t, corners(g, ix, iy))) continue;
+        if ((r.x0 != r.x1 || r.y0 != r.y1) && !meets_cell(*cv.s, *cv.t, corners(g, ix, iy))) continue;
         if (cell.blocker >= 0 && curve_behind(cv, ss.facets[cell.blocker], ss.world)) continue;
         cell.curves.push_back(ci);
         kept = true;
@@ -840,13 +842,13 @@ namespace {
 // those of d_C and d_D. A filtered predicate: no lazy number is built.
 CGAL::Sign depth_gap(const Curve& C, const Curve& D, const P2& p, bool along_x) {
   auto u = [&](const P3& q) -> const FT& { return along_x ? q.x : q.y; };
-  const CGAL::Sign dc = CGAL::compare(u(C.t), u(C.s)), dd = CGAL::compare(u(D.t), u(D.s));
+  const CGAL::Sign dc = CGAL::compare(u(*C.t), u(*C.s)), dd = CGAL::compare(u(*D.t), u(*D.s));
   const CGAL::Sign cross = filtered_sign(
       [&] {
         const Interval pu = along_x ? approx_x(p) : approx_y(p);
         auto n = [&](const Curve& K, Interval& d) {
-          d = approx_of(u(K.t)) - approx_of(u(K.s));
-          return approx_of(K.s.z) * d + (pu - approx_of(u(K.s))) * (approx_of(K.t.z) - approx_of(K.s.z));
+          d = approx_of(u(*K.t)) - approx_of(u(*K.s));
+          return approx_of(K.s->z) * d + (pu - approx_of(u(*K.s))) * (approx_of(K.t->z) - approx_of(K.s->z));
         };
         Interval d_c, d_d;
         const Interval n_c = n(C, d_c), n_d = n(D, d_d);
@@ -855,8 +857,8 @@ CGAL::Sign depth_gap(const Curve& C, const Curve& D, const P2& p, bool along_x) 
       [&]() -> mpq_class {
         const mpq_class pu = along_x ? exact_x(p) : exact_y(p);
         auto n = [&](const Curve& K, mpq_class& d) -> mpq_class {
-          d = to_mpq(u(K.t)) - to_mpq(u(K.s));
-          return to_mpq(K.s.z) * d + (pu - to_mpq(u(K.s))) * (to_mpq(K.t.z) - to_mpq(K.s.z));
+          d = to_mpq(u(*K.t)) - to_mpq(u(*K.s));
+          return to_mpq(K.s->z) * d + (pu - to_mpq(u(*K.s))) * (to_mpq(K.t->z) - to_mpq(K.s->z));
         };
         mpq_class d_c, d_d;
         const mpq_class n_c = n(C, d_c), n_d = n(D, d_d);
@@ -867,7 +869,7 @@ CGAL::Sign depth_gap(const Curve& C, const Curve& D, const P2& p, bool along_x) 
 
 bool depth_crossing(const Curve& C, const Curve& D, const P2& lo, const P2& hi, P2& x) {
   // The signs first, on filtered predicates; the point (lazy) only for a crossing.
-  const bool along_x = CGAL::compare_x(C.s.xy(), C.t.xy()) != CGAL::EQUAL;
+  const bool along_x = CGAL::compare_x(C.s->xy(), C.t->xy()) != CGAL::EQUAL;
   if (depth_gap(C, D, lo, along_x) * depth_gap(C, D, hi, along_x) >= 0) return false;
   FT flo = depth_on(C, lo) - depth_on(D, lo), fhi = depth_on(C, hi) - depth_on(D, hi);
   FT mu = flo / (flo - fhi);
@@ -964,7 +966,7 @@ struct Cutter {
   }
   // p strictly between the end points of C (p known to be on C's line).
   static bool strictly_within(const Curve& C, const P2& p) {
-    return CGAL::collinear_are_strictly_ordered_along_line(C.s.xy(), p, C.t.xy());
+    return CGAL::collinear_are_strictly_ordered_along_line(C.s->xy(), p, C.t->xy());
   }
 
   // Cuts C and D where they cross or touch; true where they may meet (closed
@@ -973,7 +975,7 @@ struct Cutter {
     const Curve &C = ss.curves[ci], &D = ss.curves[di];
     if (!CGAL::do_overlap(C.box, D.box)) return false;
     ++row.pairs;
-    const P2 &cs = C.s.xy(), &ct = C.t.xy(), &ds = D.s.xy(), &dt = D.t.xy();   // (references: no handle copied)
+    const P2 &cs = C.s->xy(), &ct = C.t->xy(), &ds = D.s->xy(), &dt = D.t->xy();   // (references: no handle copied)
     // End points known to be the same vertex need no predicate.
     auto same = [](long a, long b) { return a >= 0 && a == b; };
     const bool shared = same(C.vs, D.vs) || same(C.vs, D.vt) || same(C.vt, D.vs) || same(C.vt, D.vt);
@@ -1017,9 +1019,9 @@ struct Cutter {
     const Curve& C = ss.curves[ci];
     const Facet& F = ss.facets[fi];
     if (!CGAL::do_overlap(C.box, F.box)) return;
-    const FT ds = C.s.z - F.depth_at(C.s.xy()), dt = C.t.z - F.depth_at(C.t.xy());
+    const FT ds = C.s->z - F.depth_at(C.s->xy()), dt = C.t->z - F.depth_at(C.t->xy());
     if (CGAL::sign(ds) * CGAL::sign(dt) >= 0) return;
-    const P2 p = C.s.xy() + (ds / (ds - dt)) * (C.t.xy() - C.s.xy());
+    const P2 p = C.s->xy() + (ds / (ds - dt)) * (C.t->xy() - C.s->xy());
     if (!strictly_inside(F, p)) return;   // on its boundary: that edge's crossing cuts here
     ++row.crossings;
     cut(ci, p);
@@ -1029,7 +1031,7 @@ struct Cutter {
   // their depths cross, so that the first in depth order is constant on each piece.
   void overlap(int ci, int di) {
     const Curve &C = ss.curves[ci], &D = ss.curves[di];
-    const P2 &cs = C.s.xy(), &ct = C.t.xy(), &ds = D.s.xy(), &dt = D.t.xy();
+    const P2 &cs = C.s->xy(), &ct = C.t->xy(), &ds = D.s->xy(), &dt = D.t->xy();
     std::array<P2, 4> pts{cs, ct, ds, dt};
     std::sort(pts.begin(), pts.end());   // lexicographic: along the line
     // Common part: the middle two, if C and D really overlap.
@@ -1072,15 +1074,15 @@ void share_overlap_cuts(const ScreenScene& ss, std::vector<std::pair<int, int>>&
     for (; l < members.size() && members[l].first == members[k].first; ++l) {
       const Curve& C = ss.curves[members[l].second];
       points.insert(points.end(), cuts[members[l].second].begin(), cuts[members[l].second].end());
-      points.push_back(C.s.xy());
-      points.push_back(C.t.xy());
+      points.push_back(C.s->xy());
+      points.push_back(C.t->xy());
     }
     // The points in order along the common line (by x, or by y on a vertical line),
     // each once; each curve takes those strictly between its ends: O(P log P) for
     // P points, where asking every point of every curve was O(P^2) (the edges of
     // walls seen edge-on, all on one screen line: minutes on a CAD part).
     const Curve& C0 = ss.curves[members[k].second];
-    const bool use_x = CGAL::compare_x(C0.s.xy(), C0.t.xy()) != CGAL::EQUAL;
+    const bool use_x = CGAL::compare_x(C0.s->xy(), C0.t->xy()) != CGAL::EQUAL;
     auto less = [&](const P2& a, const P2& b) {
       return (use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b)) == CGAL::SMALLER;
     };
@@ -1090,8 +1092,8 @@ void share_overlap_cuts(const ScreenScene& ss, std::vector<std::pair<int, int>>&
     for (std::size_t m = k; m < l; ++m) {
       const int ci = members[m].second;
       const Curve& C = ss.curves[ci];
-      const bool forward = less(C.s.xy(), C.t.xy());
-      const P2 &lo = forward ? C.s.xy() : C.t.xy(), &hi = forward ? C.t.xy() : C.s.xy();
+      const bool forward = less(C.s->xy(), C.t->xy());
+      const P2 &lo = forward ? C.s->xy() : C.t->xy(), &hi = forward ? C.t->xy() : C.s->xy();
       const auto first = std::upper_bound(points.begin(), points.end(), lo, less);
       const auto last = std::lower_bound(first, points.end(), hi, less);
       cuts[ci].insert(cuts[ci].end(), first, last);
@@ -1333,19 +1335,19 @@ struct Classified {
 void classify_curve(const Grid& g, const ScreenScene& ss, int ci, std::vector<P2>& pts, std::vector<Cover>& covers,
                     Classified& res) {
   const Curve& cv = ss.curves[ci];
-  const P2 &s = cv.s.xy(), &t = cv.t.xy();
+  const P2 &s = cv.s->xy(), &t = cv.t->xy();
   // 9a: sort along the curve (the order of the dominant coordinate): |dx| >= |dy|,
   // decided on the end points' numbers (no lazy coordinate or difference built).
   const bool use_x = filtered_sign(
                          [&] {
-                           return CGAL::abs(approx_of(cv.t.x) - approx_of(cv.s.x)) -
-                                  CGAL::abs(approx_of(cv.t.y) - approx_of(cv.s.y));
+                           return CGAL::abs(approx_of(cv.t->x) - approx_of(cv.s->x)) -
+                                  CGAL::abs(approx_of(cv.t->y) - approx_of(cv.s->y));
                          },
                          [&]() -> mpq_class {
-                           return abs(mpq_class(to_mpq(cv.t.x) - to_mpq(cv.s.x))) -
-                                  abs(mpq_class(to_mpq(cv.t.y) - to_mpq(cv.s.y)));
+                           return abs(mpq_class(to_mpq(cv.t->x) - to_mpq(cv.s->x))) -
+                                  abs(mpq_class(to_mpq(cv.t->y) - to_mpq(cv.s->y)));
                          }) != CGAL::NEGATIVE;
-  const bool increasing = (use_x ? CGAL::compare(cv.s.x, cv.t.x) : CGAL::compare(cv.s.y, cv.t.y)) == CGAL::SMALLER;
+  const bool increasing = (use_x ? CGAL::compare(cv.s->x, cv.t->x) : CGAL::compare(cv.s->y, cv.t->y)) == CGAL::SMALLER;
   auto key_less = [&](const P2& a, const P2& b) {   // predicates: no coordinates built
     return (use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b)) == (increasing ? CGAL::SMALLER : CGAL::LARGER);
   };
@@ -1358,12 +1360,12 @@ void classify_curve(const Grid& g, const ScreenScene& ss, int ci, std::vector<P2
   pts.insert(pts.begin(), s);
   pts.push_back(t);
   Probe probe;
-  probe.s = &cv.s;
-  probe.t = &cv.t;
+  probe.s = cv.s;
+  probe.t = cv.t;
   {
     CGAL::Protect_FPU_rounding<true> upward;
-    probe.idx = approx_of(cv.t.x) - approx_of(cv.s.x);
-    probe.idy = approx_of(cv.t.y) - approx_of(cv.s.y);
+    probe.idx = approx_of(cv.t->x) - approx_of(cv.s->x);
+    probe.idy = approx_of(cv.t->y) - approx_of(cv.s->y);
   }
   probe.x_moves = probe.idx.inf() > 0 || probe.idx.sup() < 0 || CGAL::compare_x(s, t) != CGAL::EQUAL;
   UpwardRounding upward;   // the loop calls only our own filtered predicates

@@ -158,13 +158,13 @@ struct Cutter {
 
   // p lies on C's line strictly between its end points.
   static bool inside(const Curve& C, const P2& p) {
-    return CGAL::collinear_are_strictly_ordered_along_line(C.s.xy(), p, C.t.xy());
+    return CGAL::collinear_are_strictly_ordered_along_line(C.s->xy(), p, C.t->xy());
   }
 
   void pair(int ci, int di) {
     const Curve &C = ss.curves[ci], &D = ss.curves[di];
     ++pairs;
-    const P2 c0 = C.s.xy(), c1 = C.t.xy(), d0 = D.s.xy(), d1 = D.t.xy();
+    const P2 c0 = C.s->xy(), c1 = C.t->xy(), d0 = D.s->xy(), d1 = D.t->xy();
     // End points that are one input vertex need no predicate to meet there.
     auto same = [](long a, long b) { return a >= 0 && a == b; };
     if (same(C.vs, D.vs) || same(C.vs, D.vt) || same(C.vt, D.vs) || same(C.vt, D.vt)) {
@@ -205,7 +205,7 @@ struct Cutter {
   // are present, where their depths cross (so one of them is first on each piece).
   void collinear(int ci, int di) {
     const Curve &C = ss.curves[ci], &D = ss.curves[di];
-    const P2 c0 = C.s.xy(), c1 = C.t.xy(), d0 = D.s.xy(), d1 = D.t.xy();
+    const P2 c0 = C.s->xy(), c1 = C.t->xy(), d0 = D.s->xy(), d1 = D.t->xy();
     const P2 clo = std::min(c0, c1), chi = std::max(c0, c1), dlo = std::min(d0, d1), dhi = std::max(d0, d1);
     const P2 lo = std::max(clo, dlo), hi = std::min(chi, dhi);   // lexicographic order is the order along the line
     if (!(lo < hi)) return;                                       // they meet in a point at most
@@ -344,6 +344,7 @@ void add_piercing_lines(ScreenScene& ss, Stats& stats) {
     if (ss.facets[fi].occluder) { occ.push_back(fi); boxes.push_back(ss.facets[fi].box); }
   std::int64_t tested = 0, found = 0;
   std::vector<Curve> lines;
+  std::deque<P3>& line_ends = ss.ends.emplace_back();
   BoxGrid(boxes).pairs([&](int i, int j) {
     const int fa = occ[i], fb = occ[j];
     const Facet &A = ss.facets[fa], &B = ss.facets[fb];
@@ -352,7 +353,7 @@ void add_piercing_lines(ScreenScene& ss, Stats& stats) {
     P3 p, q;
     if (!piercing_segment(A, B, p, q)) return;
     ++found;
-    lines.push_back(intersection_curve(p, q, fa, fb, A.face, B.face));
+    lines.push_back(intersection_curve(p, q, fa, fb, A.face, B.face, line_ends));
   });
   for (auto& c : lines) ss.curves.push_back(std::move(c));
   stats.count("facet_pairs_tested", tested);
@@ -380,7 +381,7 @@ void drop_painted_over(ScreenScene& ss, const std::vector<Fragment>& order, Stat
       // its visibility changes where this curve crosses it (a fuzz finding).
       const Facet& F = ss.facets[G.facet];
       if (!F.planar) return;
-      for (const P3* e : {&cv.s, &cv.t}) {
+      for (const P3* e : {cv.s, cv.t}) {
         for (std::size_t k = 0; k < G.v.size(); ++k)
           if (orient(G.v[k], G.v[(k + 1) % G.v.size()], *e) != CGAL::POSITIVE) return;
         if (plane_side(*e, F) != CGAL::POSITIVE) return;   // the curve's end strictly behind G
@@ -419,9 +420,9 @@ std::vector<std::vector<Cut>> cut_at_crossings(const ScreenScene& ss, Stats& sta
     if (std::any_of(cv.sharers.begin(), cv.sharers.end(), [&](int f) { return ss.facets[f].occluder; })) continue;
     facets.overlapping(cv.box, [&](int i) {
       const Facet& G = ss.facets[occ[i]];
-      if (plane_side(cv.s, G) * plane_side(cv.t, G) >= 0) return;   // not strictly through G's plane
-      const FT hs = cv.s.z - G.depth_at(cv.s.xy()), ht = cv.t.z - G.depth_at(cv.t.xy());
-      const P2 x = cv.s.xy() + (hs / (hs - ht)) * (cv.t.xy() - cv.s.xy());
+      if (plane_side(*cv.s, G) * plane_side(*cv.t, G) >= 0) return;   // not strictly through G's plane
+      const FT hs = cv.s->z - G.depth_at(cv.s->xy()), ht = cv.t->z - G.depth_at(cv.t->xy());
+      const P2 x = cv.s->xy() + (hs / (hs - ht)) * (cv.t->xy() - cv.s->xy());
       const int turn = G.facing == Facing::Front ? 1 : -1;
       for (std::size_t k = 0; k < G.v.size(); ++k)
         if (CGAL::orientation(G.v[k].xy(), G.v[(k + 1) % G.v.size()].xy(), x) * turn <= 0) return;
@@ -445,12 +446,12 @@ std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Frag
   std::int64_t pieces = 0, visible = 0;
   for (int ci = 0; ci < static_cast<int>(ss.curves.size()); ++ci) {
     const Curve& cv = ss.curves[ci];
-    const P2 s = cv.s.xy(), t = cv.t.xy();
-    CurveLine line{cv.s, cv.t, {}};
+    const P2 s = cv.s->xy(), t = cv.t->xy();
+    CurveLine line{*cv.s, *cv.t, {}};
     // Sort the cuts along the curve (by its dominant coordinate); a point cut
     // twice is one cut, a depth crossing if either was.
     std::vector<Cut>& pts = cuts[ci];
-    const bool use_x = CGAL::compare(CGAL::abs(cv.t.x - cv.s.x), CGAL::abs(cv.t.y - cv.s.y)) != CGAL::SMALLER;
+    const bool use_x = CGAL::compare(CGAL::abs(cv.t->x - cv.s->x), CGAL::abs(cv.t->y - cv.s->y)) != CGAL::SMALLER;
     const auto forward = use_x ? CGAL::compare_x(s, t) : CGAL::compare_y(s, t);
     std::sort(pts.begin(), pts.end(), [&](const Cut& a, const Cut& b) {
       return (use_x ? CGAL::compare_x(a.p, b.p) : CGAL::compare_y(a.p, b.p)) == forward;
@@ -524,8 +525,8 @@ std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Frag
       mp.kind = cv.kind;
       mp.faces = &cv.faces;
       mp.order_face = cv.order_face;
-      mp.s = &cv.s;
-      mp.t = &cv.t;
+      mp.s = cv.s;
+      mp.t = cv.t;
       mp.line = ci;
       out.push_back(std::move(mp));
       extend = true;

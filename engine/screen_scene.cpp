@@ -221,12 +221,12 @@ void order_on_screen(WorldFacets& wf, const Scene& scene, const View& view) {
 
 }  // namespace
 
-FT depth_on(const Curve& c, const P2& p) { return depth_along(c.s, c.t, p); }
+FT depth_on(const Curve& c, const P2& p) { return depth_along(*c.s, *c.t, p); }
 
-Curve intersection_curve(const P3& s, const P3& t, int fa, int fb, int face_a, int face_b) {
+Curve intersection_curve(const P3& s, const P3& t, int fa, int fb, int face_a, int face_b, std::deque<P3>& ends) {
   Curve c;
-  c.s = s;
-  c.t = t;
+  c.s = &ends.emplace_back(s);
+  c.t = &ends.emplace_back(t);
   c.sharers = {fa, fb};
   c.sharer_edge = {-1, -1};
   c.faces = {std::min(face_a, face_b), std::max(face_a, face_b)};
@@ -272,13 +272,15 @@ struct CurveMaker {
   P3 clip_point(std::uint32_t a, std::uint32_t b) const {
     return near_image(cut_at_near(world(a), world(b), hz[local[a]], hz[local[b]]));
   }
-  bool make(const std::vector<Facet>& facets, const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3>& dropped) const;
+  bool make(const std::vector<Facet>& facets, const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3>& dropped,
+            std::deque<P3>& ends) const;
 };
 
 // The curve of edge piece wp, made in c (every field set: c may be reused);
 // false if it is dropped (counted in `dropped`: hidden, clipped, seen end-on).
+// An end cut at the near plane is kept in `ends`.
 bool CurveMaker::make(const std::vector<Facet>& facets, const WorldPiece& wp, Curve& c,
-                      std::array<std::int64_t, 3>& dropped) const {
+                      std::array<std::int64_t, 3>& dropped, std::deque<P3>& ends) const {
   std::int64_t &dropped_hidden = dropped[0], &dropped_clipped = dropped[1], &dropped_point = dropped[2];
   c.sharers.clear();
   c.sharer_edge.clear();
@@ -325,12 +327,12 @@ bool CurveMaker::make(const std::vector<Facet>& facets, const WorldPiece& wp, Cu
   std::uint32_t a = wp.a, b = wp.b;
   const bool fa = in_front(a), fb = in_front(b);
   if (!fa && !fb) { ++dropped_clipped; return false; }
-  c.s = fa ? image(a) : clip_point(b, a);
-  c.t = fb ? image(b) : clip_point(a, b);
+  c.s = fa ? &image(a) : &ends.emplace_back(clip_point(b, a));
+  c.t = fb ? &image(b) : &ends.emplace_back(clip_point(a, b));
   c.vs = fa ? static_cast<long>(a) : -1;
   c.vt = fb ? static_cast<long>(b) : -1;
-  if (c.s.xy() == c.t.xy()) { ++dropped_point; return false; }   // seen end-on
-  c.box = box_of(c.s) + box_of(c.t);
+  if (c.s->xy() == c.t->xy()) { ++dropped_point; return false; }   // seen end-on
+  c.box = box_of(*c.s) + box_of(*c.t);
   return true;
 }
 
@@ -565,14 +567,17 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     const auto n = static_cast<std::size_t>(std::min(wave, static_cast<int>(dropped.size()) - w));
     std::vector<std::vector<Curve>> made(n);
     std::vector<std::vector<std::pair<int, CGAL::Bbox_2>>> left(n);
+    const std::size_t first_ends = ss.ends.size();
+    for (std::size_t j = 0; j < n; ++j) ss.ends.emplace_back();
     parallel_for(static_cast<int>(n), threads, [&](int j) {
       const int k = w + j;
       const Chunk r = chunk(k, np, size);
+      std::deque<P3>& ends = ss.ends[first_ends + static_cast<std::size_t>(j)];
       std::vector<Curve>& out = made[static_cast<std::size_t>(j)];
       if (!latent) out.reserve(static_cast<std::size_t>(r.end - r.begin));
       Curve c;
       for (int i = r.begin; i < r.end; ++i) {
-        if (!M.make(ss.facets, pieces[static_cast<std::size_t>(i)], c, dropped[static_cast<std::size_t>(k)])) continue;
+        if (!M.make(ss.facets, pieces[static_cast<std::size_t>(i)], c, dropped[static_cast<std::size_t>(k)], ends)) continue;
         if (latent && !c.drawn) left[static_cast<std::size_t>(j)].emplace_back(i, c.box);
         else out.push_back(std::move(c));
       }
@@ -591,16 +596,17 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     dropped_point += d[2];
   }
   // The near-plane cut of a facet bounds its region but is never drawn.
+  std::deque<P3>& cut_ends = ss.ends.emplace_back();
   for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) {
     const auto& ce = clip_edges[fi];
     if (ce.size() != 2 || !ss.facets[fi].occluder || ce[0].xy() == ce[1].xy()) continue;
     Curve c;
-    c.s = ce[0];
-    c.t = ce[1];
+    c.s = &cut_ends.emplace_back(ce[0]);
+    c.t = &cut_ends.emplace_back(ce[1]);
     c.sharers = {static_cast<int>(fi)};
     c.sharer_edge = {-1};
     c.order_face = ss.facets[fi].face;
-    c.box = box_of(c.s) + box_of(c.t);
+    c.box = box_of(*c.s) + box_of(*c.t);
     ss.curves.push_back(std::move(c));
   }
   stats.count("edge_pieces", static_cast<std::int64_t>(pieces.size()));
@@ -620,11 +626,14 @@ void make_latent_curves(ScreenScene& ss, const std::vector<char>& wanted, int th
     if (wanted[i]) pick.push_back(ss.latent_piece[i]);
   const int n = static_cast<int>(pick.size()), size = 1024;
   std::vector<std::vector<Curve>> made(static_cast<std::size_t>(chunk_count(n, size)));
+  const std::size_t first_ends = ss.ends.size();
+  for (std::size_t k = 0; k < made.size(); ++k) ss.ends.emplace_back();
   parallel_chunks(n, size, threads, [&](int k, Chunk r) {
     std::array<std::int64_t, 3> dropped{};   // (counted when it was left latent)
+    std::deque<P3>& ends = ss.ends[first_ends + static_cast<std::size_t>(k)];
     for (int i = r.begin; i < r.end; ++i) {
       Curve c;
-      if (ss.maker->make(ss.facets, ss.maker->pieces[static_cast<std::size_t>(pick[i])], c, dropped))
+      if (ss.maker->make(ss.facets, ss.maker->pieces[static_cast<std::size_t>(pick[i])], c, dropped, ends))
         made[static_cast<std::size_t>(k)].push_back(std::move(c));
     }
   });

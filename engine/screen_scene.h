@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <deque>
 #include <memory>
 #include <vector>
 
@@ -76,7 +77,8 @@ struct Facet {
 // A line that may be drawn or bound a region: an edge piece, or (added by the
 // engine) the intersection line of two facets.
 struct Curve {
-  P3 s, t;                       // screen end points with depth
+  const P3 *s = nullptr, *t = nullptr;   // screen end points with depth: vertex images
+                                 // (ScreenScene::images) or points in ScreenScene::ends
   long vs = -1, vt = -1;         // end point identity (canonical vertex id) or -1
   SmallInts sharers;             // facets whose boundary it is (for intersections: the two facets)
   SmallInts sharer_edge;         // per sharer: k where its edge v[k] -> v[k+1] holds the curve
@@ -95,6 +97,10 @@ struct ScreenScene {
   std::vector<P3> images;        // the used vertices' images (before the facets: they refer to them)
   std::vector<Facet> facets;
   std::vector<Curve> curves;
+  // Curve end points that are not vertex images (near-plane cuts, intersection-
+  // line ends), where the curves point: lists that are only appended to, so
+  // nothing they hold moves (one per chunk of curves made in parallel).
+  std::deque<std::deque<P3>> ends;
   int scale_exp = 0;             // screen coordinates are the spec's times 2^scale_exp
   const std::vector<Vec3>* world = nullptr;   // the input's vertices (canonical ids index them)
   // Latent curves (lines only, when asked): edge pieces that are not drawn, each
@@ -115,8 +121,8 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
 void make_latent_curves(ScreenScene& ss, const std::vector<char>& wanted, int threads);
 
 // The intersection line from s to t of facets fa and fb (of faces face_a, face_b):
-// a curve drawn for both faces.
-Curve intersection_curve(const P3& s, const P3& t, int fa, int fb, int face_a, int face_b);
+// a curve drawn for both faces. Its end points are kept in `ends`.
+Curve intersection_curve(const P3& s, const P3& t, int fa, int fb, int face_a, int face_b, std::deque<P3>& ends);
 
 // Depth along a curve at a screen point p on it (depth is affine along a screen line).
 FT depth_on(const Curve& c, const P2& p);
