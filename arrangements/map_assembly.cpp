@@ -50,27 +50,28 @@ CGAL::Comparison_result exact_compare_xy(const P2& a, const P2& b, const Interva
 }
 
 std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph& g, int threads) {
-  struct End {
-    Interval x, y;   // sort most pairs without touching the point
+  struct End {   // (32 bytes: two per piece, and the sort's merge buffer holds half as many again)
+    Interval x;   // sorts most pairs without touching the point
     const P2* p;
-    int at;   // 2 * piece + (0: a, 1: b)
+    int at;       // 2 * piece + (0: a, 1: b)
   };
   std::vector<End> ends;
   ends.reserve(2 * pieces.size());
   for (std::size_t i = 0; i < pieces.size(); ++i)
     for (int k = 0; k < 2; ++k) {
       const P2& p = k == 0 ? pieces[i].a : pieces[i].b;
-      ends.push_back(End{approx_point(p).x(), approx_point(p).y(), &p, static_cast<int>(2 * i + k)});
+      ends.push_back(End{approx_point(p).x(), &p, static_cast<int>(2 * i + k)});
     }
   auto compare = [](const End& a, const End& b) {
     if (a.x.sup() < b.x.inf()) return CGAL::SMALLER;
     if (b.x.sup() < a.x.inf()) return CGAL::LARGER;
     if (exact::same_rep(*a.p, *b.p)) return CGAL::EQUAL;
+    const Interval &ay = approx_point(*a.p).y(), &by = approx_point(*b.p).y();
     if (a.x.is_point() && b.x.is_point()) {   // x equal (its doubles are exact): y's intervals may tell
-      if (a.y.sup() < b.y.inf()) return CGAL::SMALLER;
-      if (b.y.sup() < a.y.inf()) return CGAL::LARGER;
+      if (ay.sup() < by.inf()) return CGAL::SMALLER;
+      if (by.sup() < ay.inf()) return CGAL::LARGER;
     }
-    return exact_compare_xy(*a.p, *b.p, a.y, b.y);
+    return exact_compare_xy(*a.p, *b.p, ay, by);
   };
   // Equal points in the order of their pieces: the same order for every thread
   // count. How many comparisons a parallel sort makes depends on the thread count,
@@ -319,6 +320,8 @@ int face_below(const Assembly& a, const Columns& cols, int w) {
 // Edges: pieces from the smaller end, those on the same two vertices merged.
 void add_edges(std::vector<MapPiece>& pieces, MapGraph& g, int threads) {
   std::vector<int> vertex_of = number_end_points(pieces, g, threads);
+  g.ends.reserve(pieces.size());   // (at most one edge per piece: no doubling past the need)
+  g.attrs.reserve(pieces.size());
   std::vector<int> order(pieces.size());
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     MapPiece& m = pieces[i];

@@ -69,24 +69,25 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   // squares from 10^3 up), it refuses them (std::logic_error) instead of
   // writing a map that is wrong.
   std::vector<FloatPiece> mp;
+  const std::vector<std::vector<int>> faces = faces_lists(ss.curves);
   for (const std::vector<VisiblePiece>& chunk : pieces)
     for (const VisiblePiece& p : chunk) {
       const Curve& c = ss.curves[p.curve];
       mp.push_back(FloatPiece{p.a.x(), p.a.y(), p.b.x(), p.b.y(), depth_on(c, p.a), depth_on(c, p.b), p.left,
-                              p.right, p.visible, p.visible && c.drawn, c.kind, &c.faces, c.order_face});
+                              p.right, p.visible, p.visible && c.drawn, c.kind, &faces[p.curve], c.order_face});
     }
   build_map_from_floats(mp, map);
 #else
-  // Each curve's faces list is moved out of it: the map keeps it, while the
-  // curves go once the graph has its edges.
-  std::vector<std::vector<int>> faces(ss.curves.size());
-  for (std::size_t i = 0; i < faces.size(); ++i) faces[i] = std::move(ss.curves[i].faces);
+  // Each curve's faces list, for the map to keep: the curves go once the graph
+  // has its edges.
+  const std::vector<std::vector<int>> faces = faces_lists(ss.curves);
   std::vector<MapPiece> mp;
   std::size_t total = 0;
   for (const std::vector<VisiblePiece>& chunk : pieces) total += chunk.size();
   mp.reserve(total);
-  // The map needs the curves alone from here: the pieces (chunk by chunk) and
-  // the facets are freed.
+  // The map needs the curves alone from here: the facets are freed, then the
+  // pieces chunk by chunk as they are turned into the map's.
+  std::vector<Facet>().swap(ss.facets);
   for (std::vector<VisiblePiece>& chunk : pieces) {
     for (const VisiblePiece& p : chunk) {
       const Curve& c = ss.curves[p.curve];
@@ -96,7 +97,6 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
     std::vector<VisiblePiece>().swap(chunk);
   }
   PieceChunks().swap(pieces);
-  std::vector<Facet>().swap(ss.facets);
   MapGraph graph = graph_of_pieces(mp, threads);
   // The graph holds what the map needs of the pieces and curves (their faces
   // lists aside): they are freed before the faces are traced and the map is

@@ -1178,6 +1178,11 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
     stats.count("curves_needed", std::count(cuts.needed.begin(), cuts.needed.end(), 1));
   }
   share_overlap_cuts(ss, overlaps, cuts.at);   // (sorts the pairs and drops repeats)
+  // The cells' curve lists have served (step 9 looks up facets alone): freed
+  // before the pieces are made, the peak of a large scene's run.
+  parallel_chunks(static_cast<int>(g.cells.size()), 4096, threads, [&](int, Chunk r) {
+    for (int k = r.begin; k < r.end; ++k) std::vector<int>().swap(g.cells[static_cast<std::size_t>(k)].curves);
+  });
   stats.count("edge_pairs_tested", pairs);
   stats.count("intersections", crossings);
   stats.count("overlapping_curve_pairs", static_cast<std::int64_t>(overlaps.size()));

@@ -435,7 +435,8 @@ std::vector<std::vector<Cut>> cut_at_crossings(const ScreenScene& ss, Stats& sta
 }
 
 std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Fragment>& order,
-                                   std::vector<std::vector<Cut>>& cuts, Stats& stats) {
+                                   std::vector<std::vector<Cut>>& cuts, const std::vector<std::vector<int>>& faces,
+                                   Stats& stats) {
   std::vector<CGAL::Bbox_2> boxes;
   boxes.reserve(order.size());
   for (const Fragment& f : order) boxes.push_back(f.box);
@@ -523,7 +524,7 @@ std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Frag
       mp.visible = seen;
       mp.drawn = drawn;
       mp.kind = cv.kind;
-      mp.faces = &cv.faces;
+      mp.faces = &faces[static_cast<std::size_t>(ci)];
       mp.order_face = cv.order_face;
       mp.s = cv.s;
       mp.t = cv.t;

@@ -41,7 +41,9 @@ std::vector<std::vector<Cut>> cut_at_crossings(const ScreenScene& ss, Stats& sta
 // fragment; at exactly equal depth, the spec's face-index rule). Keeps the
 // visible pieces and those with different faces on their two sides, joining
 // consecutive pieces of one curve judged alike (except at depth crossings).
+// The pieces point at their curve's list in `faces` (faces_lists).
 std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Fragment>& order,
-                                   std::vector<std::vector<Cut>>& cuts, Stats& stats);
+                                   std::vector<std::vector<Cut>>& cuts, const std::vector<std::vector<int>>& faces,
+                                   Stats& stats);
 
 }  // namespace vismap::engine

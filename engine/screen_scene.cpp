@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <iterator>
+#include <limits>
+#include <stdexcept>
 
 #include "engine/culling.h"
 #include "engine/edge_pieces.h"
@@ -221,6 +223,12 @@ void order_on_screen(WorldFacets& wf, const Scene& scene, const View& view) {
 
 }  // namespace
 
+std::vector<std::vector<int>> faces_lists(const std::vector<Curve>& curves) {
+  std::vector<std::vector<int>> out(curves.size());
+  for (std::size_t i = 0; i < curves.size(); ++i) out[i].assign(curves[i].faces.begin(), curves[i].faces.end());
+  return out;
+}
+
 FT depth_on(const Curve& c, const P2& p) { return depth_along(*c.s, *c.t, p); }
 
 Curve intersection_curve(const P3& s, const P3& t, int fa, int fb, int face_a, int face_b, std::deque<P3>& ends) {
@@ -299,7 +307,7 @@ bool CurveMaker::make(const std::vector<Facet>& facets, const WorldPiece& wp, Cu
   // nearer visible line on screen), so it cannot change the map.
   if (!any_occluder) { ++dropped_hidden; return false; }
   std::sort(c.faces.begin(), c.faces.end());
-  c.faces.erase(std::unique(c.faces.begin(), c.faces.end()), c.faces.end());
+  c.faces.truncate(static_cast<std::size_t>(std::unique(c.faces.begin(), c.faces.end()) - c.faces.begin()));
   // Kind, from the faces sharing the piece.
   if (c.faces.size() == 1) c.kind = EdgeKind::Border;
   else if (c.faces.size() >= 3) c.kind = EdgeKind::Crease;
@@ -329,8 +337,8 @@ bool CurveMaker::make(const std::vector<Facet>& facets, const WorldPiece& wp, Cu
   if (!fa && !fb) { ++dropped_clipped; return false; }
   c.s = fa ? &image(a) : &ends.emplace_back(clip_point(b, a));
   c.t = fb ? &image(b) : &ends.emplace_back(clip_point(a, b));
-  c.vs = fa ? static_cast<long>(a) : -1;
-  c.vt = fb ? static_cast<long>(b) : -1;
+  c.vs = fa ? static_cast<VertexId>(a) : -1;
+  c.vt = fb ? static_cast<VertexId>(b) : -1;
   if (c.s->xy() == c.t->xy()) { ++dropped_point; return false; }   // seen end-on
   c.box = box_of(*c.s) + box_of(*c.t);
   return true;
@@ -338,6 +346,8 @@ bool CurveMaker::make(const std::vector<Facet>& facets, const WorldPiece& wp, Cu
 
 ScreenScene make_screen_scene(const Scene& scene, const View& view, const EngineOptions& opt,
                               Stats& stats, bool latent) {
+  if (scene.vertices.size() > static_cast<std::size_t>(std::numeric_limits<VertexId>::max()))
+    throw std::invalid_argument("the scene has 2^31 vertices or more (vertex ids are 32-bit)");
   auto maker = std::make_shared<CurveMaker>();
   CurveMaker& M = *maker;
   M.scene = &scene;
@@ -431,7 +441,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     const std::size_t n = w.v.size();
     for (std::size_t k = 0; k < n; ++k) {
       std::uint32_t a = w.v[k], b = w.v[(k + 1) % n];
-      if (in_front(a)) { f.v.refer(image(a)); f.id.push_back(a); }
+      if (in_front(a)) { f.v.refer(image(a)); f.id.push_back(static_cast<VertexId>(a)); }
       if (in_front(a) != in_front(b)) {
         f.v.keep(in_front(a) ? clip_point(a, b) : clip_point(b, a));
         f.id.push_back(-1);
@@ -464,14 +474,15 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     f.facing = s > 0 ? Facing::Front : s < 0 ? Facing::Back : Facing::EdgeOn;
     if (f.facing == Facing::EdgeOn) { ++edge_on; return; }
     f.box = box_of(f.v[0]);
-    f.zlo = HUGE_VAL;
-    f.zhi = -HUGE_VAL;
+    double zlo = HUGE_VAL, zhi = -HUGE_VAL;
     for (const auto& p : f.v) {
       f.box += box_of(p);
       const Interval z = approx_of(p.z);
-      f.zlo = std::min(f.zlo, z.inf());
-      f.zhi = std::max(f.zhi, z.sup());
+      zlo = std::min(zlo, z.inf());
+      zhi = std::max(zhi, z.sup());
     }
+    f.zlo = float_below(zlo);
+    f.zhi = float_above(zhi);
     f.occluder = true;
     // Parallel to the screen (every vertex at one depth, known exactly from its
     // interval): depth = c. Common in views along an axis.

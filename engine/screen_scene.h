@@ -6,6 +6,8 @@
 #include <boost/iterator/indirect_iterator.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <array>
 #include <deque>
 #include <memory>
@@ -57,18 +59,33 @@ class Corners {
   int cuts_ = 0;
 };
 
+// A canonical vertex id (an input vertex's index; make_screen_scene refuses
+// scenes of 2^31 vertices or more), or -1: none.
+using VertexId = std::int32_t;
+
+// Outward rounding to float: a bound that is still a bound, in half the bytes.
+inline float float_below(double x) {
+  const float f = static_cast<float>(x);
+  return f > x ? std::nextafter(f, -HUGE_VALF) : f;
+}
+inline float float_above(double x) {
+  const float f = static_cast<float>(x);
+  return f < x ? std::nextafter(f, HUGE_VALF) : f;
+}
+
+// (The small fields first, packed: 176 bytes; a million facets are common.)
 struct Facet {
   int face = -1;                 // input face index
-  Corners v;                     // convex polygon, screen space, input order
-  SmallVec<long, 4> id;          // id[k]: v[k]'s canonical vertex id, or -1 where the near
-                                 // plane cut the polygon (as Curve::vs): connectivity answers
-                                 // some predicates without arithmetic
   Facing facing = Facing::EdgeOn;
-  FT a, b, c;                    // depth(x, y) = a x + b y + c   (not edge-on)
-  CGAL::Bbox_2 box;              // contains the exact projection
-  double zlo = 0, zhi = 0;       // contains the exact depths over the facet (of its vertices)
   bool occluder = false;         // hides and labels: not edge-on, not culled
   bool planar = true;            // false: a fan piece of a non-planar polygon
+  float zlo = 0, zhi = 0;        // contains the exact depths over the facet (of its vertices)
+  Corners v;                     // convex polygon, screen space, input order
+  SmallVec<VertexId, 4> id;      // id[k]: v[k]'s canonical vertex id, or -1 where the near
+                                 // plane cut the polygon (as Curve::vs): connectivity answers
+                                 // some predicates without arithmetic
+  FT a, b, c;                    // depth(x, y) = a x + b y + c   (not edge-on)
+  CGAL::Bbox_2 box;              // contains the exact projection
   FT depth_at(const P2& p) const { return a * p.x() + b * p.y() + c; }
   // Whether canonical vertex v (not -1) is a corner: then it lies in the plane.
   bool has_vertex(long v) const { return v >= 0 && std::find(id.begin(), id.end(), v) != id.end(); }
@@ -79,11 +96,11 @@ struct Facet {
 struct Curve {
   const P3 *s = nullptr, *t = nullptr;   // screen end points with depth: vertex images
                                  // (ScreenScene::images) or points in ScreenScene::ends
-  long vs = -1, vt = -1;         // end point identity (canonical vertex id) or -1
+  VertexId vs = -1, vt = -1;     // end point identity (canonical vertex id) or -1
   SmallInts sharers;             // facets whose boundary it is (for intersections: the two facets)
   SmallInts sharer_edge;         // per sharer: k where its edge v[k] -> v[k+1] holds the curve
                                  // (-1: not known, as on a facet cut at the near plane)
-  std::vector<int> faces;        // faces written in the JSON, ascending; empty = never drawn
+  SmallInts faces;               // faces written in the JSON, ascending; empty = never drawn
   EdgeKind kind = EdgeKind::Border;
   bool drawn = false;
   int order_face = 0;            // lowest face index: ties in (depth, face index)
@@ -123,6 +140,10 @@ void make_latent_curves(ScreenScene& ss, const std::vector<char>& wanted, int th
 // The intersection line from s to t of facets fa and fb (of faces face_a, face_b):
 // a curve drawn for both faces. Its end points are kept in `ends`.
 Curve intersection_curve(const P3& s, const P3& t, int fa, int fb, int face_a, int face_b, std::deque<P3>& ends);
+
+// Each curve's faces list, as the map takes it (the map points at these; they
+// outlive the curves).
+std::vector<std::vector<int>> faces_lists(const std::vector<Curve>& curves);
 
 // Depth along a curve at a screen point p on it (depth is affine along a screen line).
 FT depth_on(const Curve& c, const P2& p);

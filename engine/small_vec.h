@@ -46,6 +46,7 @@ class SmallVec {
     data()[size_++] = x;
   }
   void clear() { size_ = 0; }
+  void truncate(std::size_t n) { size_ = static_cast<std::uint32_t>(n); }   // (n <= size())
   std::size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }
   T* data() { return cap_ > kInline ? heap_ : in_; }
