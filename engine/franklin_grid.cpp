@@ -1053,8 +1053,7 @@ struct Cutter {
 // directly or through others on the same line, that lie inside it. A cut made on
 // one of them alone (where it pierces a plane, or where it crosses a third
 // collinear curve in depth) would otherwise be missing on the others.
-void share_overlap_cuts(const ScreenScene& ss, std::vector<std::pair<int, int>>& overlaps,
-                        std::vector<std::vector<P2>>& cuts) {
+void share_overlap_cuts(const ScreenScene& ss, std::vector<std::pair<int, int>>& overlaps, Cuts& cuts) {
   if (overlaps.empty()) return;
   std::sort(overlaps.begin(), overlaps.end());
   overlaps.erase(std::unique(overlaps.begin(), overlaps.end()), overlaps.end());
@@ -1073,7 +1072,7 @@ void share_overlap_cuts(const ScreenScene& ss, std::vector<std::pair<int, int>>&
     points.clear();
     for (; l < members.size() && members[l].first == members[k].first; ++l) {
       const Curve& C = ss.curves[members[l].second];
-      points.insert(points.end(), cuts[members[l].second].begin(), cuts[members[l].second].end());
+      if (const std::vector<P2>* own = cuts.find(members[l].second)) points.insert(points.end(), own->begin(), own->end());
       points.push_back(C.s->xy());
       points.push_back(C.t->xy());
     }
@@ -1096,7 +1095,7 @@ void share_overlap_cuts(const ScreenScene& ss, std::vector<std::pair<int, int>>&
       const P2 &lo = forward ? C.s->xy() : C.t->xy(), &hi = forward ? C.t->xy() : C.s->xy();
       const auto first = std::upper_bound(points.begin(), points.end(), lo, less);
       const auto last = std::lower_bound(first, points.end(), hi, less);
-      cuts[ci].insert(cuts[ci].end(), first, last);
+      if (first != last) cuts.at(ci).insert(cuts.at(ci).end(), first, last);
     }
     k = l;
   }
@@ -1109,7 +1108,7 @@ void share_overlap_cuts(const ScreenScene& ss, std::vector<std::pair<int, int>>&
 Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats& stats) {
   const std::size_t n = ss.curves.size();
   Cuts cuts;
-  cuts.at.resize(n);
+  cuts.list_of.assign(n, Cuts::kNone);
   cuts.needed.assign(n, 1);
   std::vector<std::pair<int, int>> overlaps;
   std::int64_t pairs = 0, crossings = 0;
@@ -1125,7 +1124,7 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
       }
     });
     for (RowCuts& row : rows) {
-      for (auto& [c, p] : row.at) cuts.at[static_cast<std::size_t>(c)].push_back(std::move(p));
+      for (auto& [c, p] : row.at) cuts.at(c).push_back(std::move(p));
       overlaps.insert(overlaps.end(), row.overlaps.begin(), row.overlaps.end());
       for (int c : row.met) cuts.needed[static_cast<std::size_t>(c)] = 1;
       pairs += row.pairs;
@@ -1177,7 +1176,7 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
     });
     stats.count("curves_needed", std::count(cuts.needed.begin(), cuts.needed.end(), 1));
   }
-  share_overlap_cuts(ss, overlaps, cuts.at);   // (sorts the pairs and drops repeats)
+  share_overlap_cuts(ss, overlaps, cuts);   // (sorts the pairs and drops repeats)
   // The cells' curve lists have served (step 9 looks up facets alone): freed
   // before the pieces are made, the peak of a large scene's run.
   parallel_chunks(static_cast<int>(g.cells.size()), 4096, threads, [&](int, Chunk r) {
@@ -1460,9 +1459,13 @@ PieceChunks classify_pieces(const Grid& g, const ScreenScene& ss, Cuts& cuts, in
   std::vector<Classified> chunks(static_cast<std::size_t>(chunk_count(n, size)));
   parallel_chunks(n, size, threads, [&](int k, Chunk r) {
     std::vector<Cover> covers;
-    for (int ci = r.begin; ci < r.end; ++ci)
-      if (cuts.needed[static_cast<std::size_t>(ci)])
-        classify_curve(g, ss, ci, cuts.at[static_cast<std::size_t>(ci)], covers, chunks[static_cast<std::size_t>(k)]);
+    std::vector<P2> uncut;   // (the list of a curve cut nowhere)
+    for (int ci = r.begin; ci < r.end; ++ci) {
+      if (!cuts.needed[static_cast<std::size_t>(ci)]) continue;
+      std::vector<P2>* own = cuts.find(ci);
+      if (!own) uncut.clear();
+      classify_curve(g, ss, ci, own ? *own : uncut, covers, chunks[static_cast<std::size_t>(k)]);
+    }
   });
   PieceChunks out(chunks.size());
   std::int64_t pieces = 0, visible = 0;

@@ -57,9 +57,22 @@ void add_intersection_lines(const Grid& g, ScreenScene& ss, int threads, Stats& 
 void bucket_curves(Grid& g, ScreenScene& ss, bool regions, int threads, Stats& stats);   // step 7
 // Step 8's cut points per curve, and which curves the map needs (all of them,
 // unless only the drawn lines are wanted).
+// Where each curve is cut; most curves of a mesh are cut nowhere, so only those
+// that are have a list (a list per curve was 24 bytes each, a million of them).
 struct Cuts {
-  std::vector<std::vector<P2>> at;
   std::vector<char> needed;
+  std::vector<P2>& at(int c) {   // (made empty on first use)
+    std::uint32_t& k = list_of[static_cast<std::size_t>(c)];
+    if (k == kNone) { k = static_cast<std::uint32_t>(lists.size()); lists.emplace_back(); }
+    return lists[k];
+  }
+  std::vector<P2>* find(int c) {   // (nullptr: none)
+    const std::uint32_t k = list_of[static_cast<std::size_t>(c)];
+    return k == kNone ? nullptr : &lists[k];
+  }
+  static constexpr std::uint32_t kNone = ~0u;
+  std::vector<std::uint32_t> list_of;   // per curve: its list in `lists`, or kNone
+  std::vector<std::vector<P2>> lists;
 };
 Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats& stats);        // step 8
 // Steps 9 and 11's pieces in curve order, in chunks (one list per chunk of curves

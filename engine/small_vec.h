@@ -21,6 +21,13 @@ class SmallVec {
   SmallVec(std::initializer_list<T> values) {
     for (const T& x : values) push_back(x);
   }
+  template <class It>
+  SmallVec(It first, It last) {
+    for (; first != last; ++first) push_back(*first);
+  }
+  SmallVec(std::size_t n, const T& x) {
+    for (std::size_t i = 0; i < n; ++i) push_back(x);
+  }
   SmallVec(const SmallVec& o) {
     for (const T& x : o) push_back(x);
   }

@@ -149,7 +149,7 @@ WorldFacet triangle_facet(int face, const std::vector<std::uint32_t>& ids, std::
   auto role = [n](std::size_t i, std::size_t j) {
     return (j == (i + 1) % n) ? EdgeRole::Boundary : EdgeRole::Internal;
   };
-  return WorldFacet{face, {ids[a], ids[b], ids[c]}, {role(a, b), role(b, c), role(c, a)}};
+  return WorldFacet{face, true, {ids[a], ids[b], ids[c]}, {role(a, b), role(b, c), role(c, a)}};
 }
 
 }  // namespace
@@ -217,7 +217,8 @@ WorldFacets make_world_facets(const Scene& scene) {
       for (std::size_t k = 0; k < n; ++k) q[k] = drop_axis(p[k], axis);
       CGAL::Orientation turn;
       if (is_convex(q, turn)) {
-        out.facets.push_back(WorldFacet{face, ids, std::vector<EdgeRole>(n, EdgeRole::Boundary)});
+        out.facets.push_back(WorldFacet{face, true, SmallVec<std::uint32_t, 4>(ids.begin(), ids.end()),
+                                        SmallVec<EdgeRole, 8>(n, EdgeRole::Boundary)});
         continue;
       }
       ++out.nonconvex;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/scene.h"
+#include "engine/small_vec.h"
 
 namespace vismap::engine {
 
@@ -16,11 +17,12 @@ enum class EdgeRole : std::uint8_t {
   Clip        // the near-plane cut of a perspective view: never drawn
 };
 
+// (48 bytes, a triangle's or a quad's corners inline: a million facets are common.)
 struct WorldFacet {
   int face = -1;                        // input face index
-  std::vector<std::uint32_t> v;         // input vertex ids, in the polygon's order
-  std::vector<EdgeRole> role;           // role[i]: edge v[i] -> v[i+1]
   bool planar = true;                   // false: a fan piece of a non-planar polygon
+  SmallVec<std::uint32_t, 4> v;         // input vertex ids, in the polygon's order
+  SmallVec<EdgeRole, 8> role;           // role[i]: edge v[i] -> v[i+1]
 };
 
 struct WorldFacets {
