@@ -260,7 +260,7 @@ struct CurveMaker {
   std::vector<std::uint32_t> local;   // input index -> place in used
   const P3* sv = nullptr;             // images, by place (the screen scene's table)
   std::vector<char> front;            // in front of the near plane, by place
-  std::vector<FT> hz;                 // homogeneous Z, by place (perspective: the near plane is Z = 0)
+  const ExactSource* exact = nullptr;   // (the screen scene's)
   std::vector<std::vector<P3>> clip_edges;   // per facet: its cut by the near plane
   std::vector<char> occluder;         // per facet: hides and labels, as culling left it
 
@@ -277,8 +277,11 @@ struct CurveMaker {
     times_pow2(y, k);
     return P3{from_mpq(x), from_mpq(y), FT(0)};
   }
+  // Where edge a-b crosses the near plane Z = 0 (homogeneous Z made for the two
+  // ends here: few edges are cut, and a lazy number per vertex would be 80 bytes).
   P3 clip_point(std::uint32_t a, std::uint32_t b) const {
-    return near_image(cut_at_near(world(a), world(b), hz[local[a]], hz[local[b]]));
+    return near_image(
+        cut_at_near(world(a), world(b), projected_number(*exact, a, 2, false), projected_number(*exact, b, 2, false)));
   }
   bool make(const std::vector<Facet>& facets, const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3>& dropped,
             std::deque<P3>& ends) const;
@@ -385,8 +388,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   exact->k = k;
   exact->spanning.resize(wf.facets.size());
   ss.exact = exact;
-  std::vector<FT>& hz = M.hz;   // homogeneous Z, for clipping at the near plane (perspective)
-  if (view.perspective) hz.resize(used.size());
+  M.exact = exact.get();
   std::vector<P3>& sv = ss.images;
   sv.resize(used.size());
   M.sv = sv.data();
@@ -411,7 +413,6 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     }
     // Perspective: X/W, Y/W, Z/W as lazy leaves (the quotient's interval now),
     // kept where Z > 0 and W > 0 (decided exactly on binary floats).
-    hz[u] = projected_number(*exact, used[u], 2, false);   // (for clipping at the near plane)
     zsign[u] = static_cast<std::int8_t>(projected_sign(view.m[2], p));
     front[u] = zsign[u] > 0 && projected_sign(view.m[3], p) > 0;
     if (!front[u]) return;
