@@ -185,7 +185,7 @@ double warped(const Axis& a, double v) {
 
 // The curves' boxes, by index: the curves made, then the latent ones.
 std::size_t curve_count(const ScreenScene& ss) { return ss.curves.size() + ss.latent_box.size(); }
-CGAL::Bbox_2 curve_box(const ScreenScene& ss, std::size_t i) {
+const CGAL::Bbox_2& curve_box(const ScreenScene& ss, std::size_t i) {
   return i < ss.curves.size() ? ss.curves[i].box : ss.latent_box[i - ss.curves.size()];
 }
 
@@ -307,7 +307,7 @@ Grid make_grid(const ScreenScene& ss, double c, Stats& stats) {
     any = true;
   }
   for (const Facet& f : ss.facets)
-    if (f.occluder) { box = any ? box + CGAL::Bbox_2(f.box) : CGAL::Bbox_2(f.box); any = true; }
+    if (f.occluder) { box = any ? box + f.box : f.box; any = true; }
   if (!any) box = CGAL::Bbox_2(0, 0, 1, 1);
   Grid g;
   const double n = static_cast<double>(curve_count(ss));
@@ -351,7 +351,7 @@ template <class BoxOf>
 std::vector<std::vector<int>> items_by_row(const Grid& g, int n, BoxOf&& box_of) {
   std::vector<std::vector<int>> rows(static_cast<std::size_t>(g.Y.cells()));
   for (int i = 0; i < n; ++i) {
-    const FloatBox* b = box_of(i);
+    const CGAL::Bbox_2* b = box_of(i);
     if (!b) continue;
     const int y0 = g.Y.index(b->ymin()), y1 = g.Y.index(b->ymax());
     for (int iy = y0; iy <= y1; ++iy) rows[static_cast<std::size_t>(iy)].push_back(i);

@@ -474,15 +474,14 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
         });
     f.facing = s > 0 ? Facing::Front : s < 0 ? Facing::Back : Facing::EdgeOn;
     if (f.facing == Facing::EdgeOn) { ++edge_on; return; }
-    CGAL::Bbox_2 box = box_of(f.v[0]);
+    f.box = box_of(f.v[0]);
     double zlo = HUGE_VAL, zhi = -HUGE_VAL;
     for (const auto& p : f.v) {
-      box += box_of(p);
+      f.box += box_of(p);
       const Interval z = approx_of(p.z);
       zlo = std::min(zlo, z.inf());
       zhi = std::max(zhi, z.sup());
     }
-    f.box = box;
     f.zlo = float_below(zlo);
     f.zhi = float_above(zhi);
     f.occluder = true;
@@ -651,7 +650,7 @@ void make_latent_curves(ScreenScene& ss, const std::vector<char>& wanted, int th
     }
   });
   for (std::vector<Curve>& m : made) std::move(m.begin(), m.end(), std::back_inserter(ss.curves));
-  std::vector<FloatBox>().swap(ss.latent_box);
+  std::vector<CGAL::Bbox_2>().swap(ss.latent_box);
   std::vector<int>().swap(ss.latent_piece);
   ss.maker.reset();
 }

@@ -73,24 +73,7 @@ inline float float_above(double x) {
   return f < x ? std::nextafter(f, HUGE_VALF) : f;
 }
 
-// A box in floats, rounded outward: it holds all the double box held, in half
-// the bytes (a million facets and curves keep one each). Read as a CGAL::Bbox_2.
-class FloatBox {
- public:
-  FloatBox() : FloatBox(CGAL::Bbox_2()) {}
-  FloatBox(const CGAL::Bbox_2& b)   // NOLINT: a box is a box
-      : x0_(float_below(b.xmin())), y0_(float_below(b.ymin())), x1_(float_above(b.xmax())), y1_(float_above(b.ymax())) {}
-  operator CGAL::Bbox_2() const { return CGAL::Bbox_2(x0_, y0_, x1_, y1_); }   // NOLINT
-  double xmin() const { return x0_; }
-  double ymin() const { return y0_; }
-  double xmax() const { return x1_; }
-  double ymax() const { return y1_; }
-
- private:
-  float x0_, y0_, x1_, y1_;
-};
-
-// (The small fields first, packed: 160 bytes; a million facets are common.)
+// (The small fields first, packed: 176 bytes; a million facets are common.)
 struct Facet {
   int face = -1;                 // input face index
   Facing facing = Facing::EdgeOn;
@@ -102,7 +85,7 @@ struct Facet {
                                  // plane cut the polygon (as Curve::vs): connectivity answers
                                  // some predicates without arithmetic
   FT a, b, c;                    // depth(x, y) = a x + b y + c   (not edge-on)
-  FloatBox box;                   // contains the exact projection
+  CGAL::Bbox_2 box;              // contains the exact projection
   FT depth_at(const P2& p) const { return a * p.x() + b * p.y() + c; }
   // Whether canonical vertex v (not -1) is a corner: then it lies in the plane.
   bool has_vertex(long v) const { return v >= 0 && std::find(id.begin(), id.end(), v) != id.end(); }
@@ -121,7 +104,7 @@ struct Curve {
   EdgeKind kind = EdgeKind::Border;
   bool drawn = false;
   int order_face = 0;            // lowest face index: ties in (depth, face index)
-  FloatBox box;
+  CGAL::Bbox_2 box;
 };
 
 struct CurveMaker;   // (screen_scene.cpp: what making a curve from an edge piece needs)
@@ -139,7 +122,7 @@ struct ScreenScene {
   const std::vector<Vec3>* world = nullptr;   // the input's vertices (canonical ids index them)
   // Latent curves (lines only, when asked): edge pieces that are not drawn, each
   // known by its box until make_latent_curves makes the ones a drawing needs.
-  std::vector<FloatBox> latent_box;
+  std::vector<CGAL::Bbox_2> latent_box;
   std::vector<int> latent_piece;
   std::shared_ptr<const CurveMaker> maker;
 };
