@@ -5,8 +5,13 @@
 
 #include "arrangements/visibility_map.h"
 #include "engine/exact_kernel.h"
+#include "engine/small_vec.h"
 
 namespace vismap {
+
+// A written segment's faces, ascending (inline: one or two almost always).
+using FacesList = engine::SmallInts;
+
 VISMAP_KERNEL_BEGIN
 
 struct MapPiece {
@@ -18,7 +23,7 @@ struct MapPiece {
                                      // with the lines coinciding with it, drawn or not
   bool drawn = false;                // visible, and of a kind that is drawn
   EdgeKind kind = EdgeKind::Border;
-  const std::vector<int>* faces = nullptr;
+  const FacesList* faces = nullptr;
   int order_face = 0;                // lowest face index, for ties in depth
   int line = -1;                     // the engine's curve it lies on (-1: not known): pieces
                                      // of one curve are collinear, known without arithmetic
@@ -54,7 +59,7 @@ struct FloatPiece {
   int left = -1, right = -1;
   bool visible = false, drawn = false;
   EdgeKind kind = EdgeKind::Border;
-  const std::vector<int>* faces = nullptr;
+  const FacesList* faces = nullptr;
   int order_face = 0;
 };
 void build_map_from_floats(std::vector<FloatPiece>& pieces, VisibilityMap& map);   // in the exact build

@@ -131,7 +131,8 @@ void write_segments(const MapGraph& g, std::vector<Chain> chains, const std::vec
     // The faces lists lie with the engine's curves, in another order: fetch ahead.
     if (i + 16 < chains.size()) __builtin_prefetch(g.attrs[chains[i + 16].edge].faces);
     const Chain& c = chains[i];
-    map.segments.push_back(Segment{index[c.from], index[c.to], g.attrs[c.edge].kind, *g.attrs[c.edge].faces});
+    const FacesList& faces = *g.attrs[c.edge].faces;
+    map.segments.push_back(Segment{index[c.from], index[c.to], g.attrs[c.edge].kind, {faces.begin(), faces.end()}});
   }
 }
 

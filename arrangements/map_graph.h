@@ -19,7 +19,7 @@ VISMAP_KERNEL_BEGIN
 struct EdgeAttr {
   bool drawn = false;
   EdgeKind kind = EdgeKind::Border;
-  const std::vector<int>* faces = nullptr;
+  const FacesList* faces = nullptr;
   int left = -1, right = -1;
   int line = -1;                // the curve of a piece on it (MapPiece::line; -1: not known):
                                 // two edges with one curve are collinear, known without arithmetic

@@ -17,7 +17,7 @@ struct Point2 {
 bool operator<(const Point2& a, const Point2& b);   // lexicographic (x, then y)
 bool operator==(const Point2& a, const Point2& b);
 
-enum class EdgeKind { Border, Silhouette, Crease, Smooth, Intersection };
+enum class EdgeKind : std::uint8_t { Border, Silhouette, Crease, Smooth, Intersection };
 const char* to_string(EdgeKind k);
 
 // Rings and segment ends are indices into VisibilityMap::vertices: each vertex

@@ -69,7 +69,7 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   // squares from 10^3 up), it refuses them (std::logic_error) instead of
   // writing a map that is wrong.
   std::vector<FloatPiece> mp;
-  const std::vector<std::vector<int>> faces = faces_lists(ss.curves);
+  const std::vector<FacesList> faces = faces_lists(ss.curves);
   for (const std::vector<VisiblePiece>& chunk : pieces)
     for (const VisiblePiece& p : chunk) {
       const Curve& c = ss.curves[p.curve];
@@ -80,7 +80,7 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
 #else
   // Each curve's faces list, for the map to keep: the curves go once the graph
   // has its edges.
-  const std::vector<std::vector<int>> faces = faces_lists(ss.curves);
+  const std::vector<FacesList> faces = faces_lists(ss.curves);
   std::vector<MapPiece> mp;
   std::size_t total = 0;
   for (const std::vector<VisiblePiece>& chunk : pieces) total += chunk.size();

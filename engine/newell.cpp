@@ -40,7 +40,7 @@ VisibilityMap visibility_newell(const Scene& scene, const View& view, const Engi
   drop_painted_over(ss, order, st);
   std::vector<std::vector<Cut>> cuts = cut_at_crossings(ss, st);
   st.time("intersections", clock.lap());
-  const std::vector<std::vector<int>> faces = faces_lists(ss.curves);   // (the map points at these)
+  const std::vector<FacesList> faces = faces_lists(ss.curves);   // (the map points at these)
   std::vector<MapPiece> pieces = paint_pieces(ss, order, cuts, faces, st);
   std::vector<std::vector<Cut>>().swap(cuts);   // freed here, and counted here
   st.time("overlay", clock.lap());

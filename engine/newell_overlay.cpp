@@ -435,7 +435,7 @@ std::vector<std::vector<Cut>> cut_at_crossings(const ScreenScene& ss, Stats& sta
 }
 
 std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Fragment>& order,
-                                   std::vector<std::vector<Cut>>& cuts, const std::vector<std::vector<int>>& faces,
+                                   std::vector<std::vector<Cut>>& cuts, const std::vector<FacesList>& faces,
                                    Stats& stats) {
   std::vector<CGAL::Bbox_2> boxes;
   boxes.reserve(order.size());

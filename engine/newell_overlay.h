@@ -43,7 +43,7 @@ std::vector<std::vector<Cut>> cut_at_crossings(const ScreenScene& ss, Stats& sta
 // consecutive pieces of one curve judged alike (except at depth crossings).
 // The pieces point at their curve's list in `faces` (faces_lists).
 std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Fragment>& order,
-                                   std::vector<std::vector<Cut>>& cuts, const std::vector<std::vector<int>>& faces,
+                                   std::vector<std::vector<Cut>>& cuts, const std::vector<FacesList>& faces,
                                    Stats& stats);
 
 }  // namespace vismap::engine

@@ -223,9 +223,10 @@ void order_on_screen(WorldFacets& wf, const Scene& scene, const View& view) {
 
 }  // namespace
 
-std::vector<std::vector<int>> faces_lists(const std::vector<Curve>& curves) {
-  std::vector<std::vector<int>> out(curves.size());
-  for (std::size_t i = 0; i < curves.size(); ++i) out[i].assign(curves[i].faces.begin(), curves[i].faces.end());
+std::vector<SmallInts> faces_lists(const std::vector<Curve>& curves) {
+  std::vector<SmallInts> out;
+  out.reserve(curves.size());
+  for (const Curve& c : curves) out.push_back(c.faces);
   return out;
 }
 
@@ -475,15 +476,14 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     f.facing = s > 0 ? Facing::Front : s < 0 ? Facing::Back : Facing::EdgeOn;
     if (f.facing == Facing::EdgeOn) { ++edge_on; return; }
     f.box = box_of(f.v[0]);
-    double zlo = HUGE_VAL, zhi = -HUGE_VAL;
+    f.zlo = HUGE_VAL;
+    f.zhi = -HUGE_VAL;
     for (const auto& p : f.v) {
       f.box += box_of(p);
       const Interval z = approx_of(p.z);
-      zlo = std::min(zlo, z.inf());
-      zhi = std::max(zhi, z.sup());
+      f.zlo = std::min(f.zlo, z.inf());
+      f.zhi = std::max(f.zhi, z.sup());
     }
-    f.zlo = float_below(zlo);
-    f.zhi = float_above(zhi);
     f.occluder = true;
     // Parallel to the screen (every vertex at one depth, known exactly from its
     // interval): depth = c. Common in views along an axis.

@@ -47,39 +47,31 @@ class Corners {
   Iterator end() const { return Iterator(at_.end()); }
   void refer(const P3& image) { at_.push_back(&image); }
   void keep(P3 cut) {   // (at most two per facet: a convex polygon's cut by a plane)
+    const int k = cut_ ? 1 : 0;   // (the block is made for the first)
     if (!cut_) cut_ = std::make_unique<std::array<P3, 2>>();
-    (*cut_)[cuts_] = std::move(cut);
-    at_.push_back(&(*cut_)[cuts_++]);
+    (*cut_)[k] = std::move(cut);
+    at_.push_back(&(*cut_)[k]);
   }
   void clear() { at_.clear(); }
 
  private:
   SmallVec<const P3*, 4> at_;
   std::unique_ptr<std::array<P3, 2>> cut_;
-  int cuts_ = 0;
 };
 
 // A canonical vertex id (an input vertex's index; make_screen_scene refuses
 // scenes of 2^31 vertices or more), or -1: none.
 using VertexId = std::int32_t;
 
-// Outward rounding to float: a bound that is still a bound, in half the bytes.
-inline float float_below(double x) {
-  const float f = static_cast<float>(x);
-  return f > x ? std::nextafter(f, -HUGE_VALF) : f;
-}
-inline float float_above(double x) {
-  const float f = static_cast<float>(x);
-  return f < x ? std::nextafter(f, HUGE_VALF) : f;
-}
-
-// (The small fields first, packed: 176 bytes; a million facets are common.)
+// (The small fields first, packed: 176 bytes; a million facets are common. Boxes
+// and depth ranges stay doubles: an orthographic view does not translate, and a
+// float's step near a georeferenced 5e6 is 0.5.)
 struct Facet {
   int face = -1;                 // input face index
   Facing facing = Facing::EdgeOn;
   bool occluder = false;         // hides and labels: not edge-on, not culled
   bool planar = true;            // false: a fan piece of a non-planar polygon
-  float zlo = 0, zhi = 0;        // contains the exact depths over the facet (of its vertices)
+  double zlo = 0, zhi = 0;       // contains the exact depths over the facet (of its vertices)
   Corners v;                     // convex polygon, screen space, input order
   SmallVec<VertexId, 4> id;      // id[k]: v[k]'s canonical vertex id, or -1 where the near
                                  // plane cut the polygon (as Curve::vs): connectivity answers
@@ -143,7 +135,7 @@ Curve intersection_curve(const P3& s, const P3& t, int fa, int fb, int face_a, i
 
 // Each curve's faces list, as the map takes it (the map points at these; they
 // outlive the curves).
-std::vector<std::vector<int>> faces_lists(const std::vector<Curve>& curves);
+std::vector<SmallInts> faces_lists(const std::vector<Curve>& curves);
 
 // Depth along a curve at a screen point p on it (depth is affine along a screen line).
 FT depth_on(const Curve& c, const P2& p);

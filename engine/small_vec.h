@@ -4,6 +4,7 @@
 // (T trivially copyable); SmallInts is 16 bytes in all (a std::vector is 24
 // plus its block).
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <initializer_list>
@@ -93,6 +94,15 @@ class SmallVec {
   };
   std::uint32_t size_ = 0, cap_ = kInline;
 };
+
+template <class T, std::uint32_t N>
+bool operator==(const SmallVec<T, N>& a, const SmallVec<T, N>& b) {
+  return std::equal(a.begin(), a.end(), b.begin(), b.end());
+}
+template <class T, std::uint32_t N>
+bool operator<(const SmallVec<T, N>& a, const SmallVec<T, N>& b) {   // lexicographic
+  return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end());
+}
 
 using SmallInts = SmallVec<int, 2>;
 

@@ -36,7 +36,7 @@ std::string json_of(VisibilityMap m) {
 struct PieceSet {
   std::vector<MapPiece> pieces;
   std::vector<P3> lines;                 // each piece's line with depth (two points)
-  std::vector<std::vector<int>> faces;   // the faces lists pieces point to
+  std::vector<FacesList> faces;          // the faces lists pieces point to
 };
 
 // The edges of the arrangement of `segments` as pieces: faces labelled at random
@@ -146,7 +146,7 @@ TEST(Assembly, EmptyInputGivesAnEmptyMap) {
 // Two collinear pieces from one vertex with different far ends overlap in part:
 // the sweep would split them; the assembly was promised they do not occur.
 TEST(Assembly, RefusesPiecesThatOverlapInPart) {
-  const std::vector<int> faces{0};
+  const FacesList faces{0};
   const P3 s(FT(0), FT(0), FT(0)), t(FT(4), FT(0), FT(0));
   auto piece = [&](int x0, int x1) {
     MapPiece m;
@@ -171,7 +171,7 @@ TEST(Assembly, RefusesPiecesThatOverlapInPart) {
 // borders drawn, with extra pieces along its bottom edge or inside it; depths 1
 // on the border, `z` on the extras.
 struct Square {
-  std::vector<int> border{0}, seam{0, 1};
+  FacesList border{0}, seam{0, 1};
   std::vector<P3> lines;
   std::vector<MapPiece> pieces;
   Square() { lines.reserve(64); }
