@@ -98,6 +98,28 @@ TEST(DoubleRange, BothEnginesAgreeAtEveryScaleAndOffset) {
   }
 }
 
+// Far from the origin, as georeferenced coordinates are (an orthographic view
+// does not translate: screen coordinates near 5e6), the engine does the same work
+// as at the origin: the boxes that pick grid cells and pairs keep their doubles
+// (as floats, where a step is 0.5, each of this terrain's boxes covered it all:
+// 100 times the pairs).
+TEST(DoubleRange, FarFromTheOriginTheWorkIsTheSame) {
+  const vismap::Scene here = vismap::gen::terrain(40, 7);
+  vismap::Scene far = here;
+  for (Vec3& v : far.vertices) v = {v.x + 5e6, v.y + 3e6, v.z};
+  auto work = [](const vismap::Scene& s) {
+    vismap::EngineOptions one;
+    one.threads = 1;
+    return vismap::visibility_franklin(s, vismap::make_view(ortho({-1, -2, -3}), s), one).stats;
+  };
+  const vismap::Stats a = work(here), b = work(far);
+  for (const char* counter : {"grid_B", "facet_pairs_tested", "edge_pairs_tested", "curve_cells"}) {
+    const double ratio = static_cast<double>(b.counted(counter)) / static_cast<double>(a.counted(counter));
+    EXPECT_TRUE(ratio > 0.5 && ratio < 2) << counter << ": " << a.counted(counter) << " at the origin, "
+                                          << b.counted(counter) << " far from it";
+  }
+}
+
 // At a power-of-two scale an orthographic map is the unscaled map times that power,
 // down to every vertex.
 TEST(DoubleRange, PowerOfTwoScaleScalesTheOrthographicMap) {
