@@ -50,28 +50,28 @@ CGAL::Comparison_result exact_compare_xy(const P2& a, const P2& b, const Interva
 }
 
 std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph& g, int threads) {
-  struct End {   // (32 bytes: two per piece, and the sort's merge buffer holds half as many again)
+  struct End {   // (24 bytes: two per piece, and the sort's merge buffer holds half as many again)
     Interval x;   // sorts most pairs without touching the point
-    const P2* p;
     int at;       // 2 * piece + (0: a, 1: b)
   };
+  auto point = [&](const End& e) -> const P2& { return e.at % 2 == 0 ? pieces[e.at / 2].a : pieces[e.at / 2].b; };
   std::vector<End> ends;
   ends.reserve(2 * pieces.size());
-  for (std::size_t i = 0; i < pieces.size(); ++i)
-    for (int k = 0; k < 2; ++k) {
-      const P2& p = k == 0 ? pieces[i].a : pieces[i].b;
-      ends.push_back(End{approx_point(p).x(), &p, static_cast<int>(2 * i + k)});
-    }
-  auto compare = [](const End& a, const End& b) {
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    ends.push_back(End{approx_point(pieces[i].a).x(), static_cast<int>(2 * i)});
+    ends.push_back(End{approx_point(pieces[i].b).x(), static_cast<int>(2 * i + 1)});
+  }
+  auto compare = [&](const End& a, const End& b) {
     if (a.x.sup() < b.x.inf()) return CGAL::SMALLER;
     if (b.x.sup() < a.x.inf()) return CGAL::LARGER;
-    if (exact::same_rep(*a.p, *b.p)) return CGAL::EQUAL;
-    const Interval &ay = approx_point(*a.p).y(), &by = approx_point(*b.p).y();
+    const P2 &pa = point(a), &pb = point(b);
+    if (exact::same_rep(pa, pb)) return CGAL::EQUAL;
+    const Interval &ay = approx_point(pa).y(), &by = approx_point(pb).y();
     if (a.x.is_point() && b.x.is_point()) {   // x equal (its doubles are exact): y's intervals may tell
       if (ay.sup() < by.inf()) return CGAL::SMALLER;
       if (by.sup() < ay.inf()) return CGAL::LARGER;
     }
-    return exact_compare_xy(*a.p, *b.p, ay, by);
+    return exact_compare_xy(pa, pb, ay, by);
   };
   // Equal points in the order of their pieces: the same order for every thread
   // count. How many comparisons a parallel sort makes depends on the thread count,
@@ -84,7 +84,7 @@ std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph
   filter_counts = before_sort;
   std::vector<int> vertex_of(ends.size());
   for (std::size_t k = 0; k < ends.size(); ++k) {
-    if (k == 0 || compare(ends[k - 1], ends[k]) != CGAL::EQUAL) g.add_point(*ends[k].p);
+    if (k == 0 || compare(ends[k - 1], ends[k]) != CGAL::EQUAL) g.add_point(point(ends[k]));
     vertex_of[ends[k].at] = static_cast<int>(g.points.size()) - 1;
   }
   return vertex_of;

@@ -78,6 +78,10 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
     }
   build_map_from_floats(mp, map);
 #else
+  // The map needs the curves alone from here: the facets (and their depth
+  // planes) are freed first, then the pieces chunk by chunk as they are turned
+  // into the map's.
+  std::vector<Facet>().swap(ss.facets);
   // Each curve's faces list, for the map to keep: the curves go once the graph
   // has its edges.
   const std::vector<FacesList> faces = faces_lists(ss.curves);
@@ -85,9 +89,6 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   std::size_t total = 0;
   for (const std::vector<VisiblePiece>& chunk : pieces) total += chunk.size();
   mp.reserve(total);
-  // The map needs the curves alone from here: the facets are freed, then the
-  // pieces chunk by chunk as they are turned into the map's.
-  std::vector<Facet>().swap(ss.facets);
   for (std::vector<VisiblePiece>& chunk : pieces) {
     for (const VisiblePiece& p : chunk) {
       const Curve& c = ss.curves[p.curve];

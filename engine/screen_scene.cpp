@@ -262,7 +262,8 @@ struct CurveMaker {
   const P3* sv = nullptr;             // images, by place (the screen scene's table)
   std::vector<char> front;            // in front of the near plane, by place
   const ExactSource* exact = nullptr;   // (the screen scene's)
-  std::vector<std::vector<P3>> clip_edges;   // per facet: its cut by the near plane
+  std::vector<std::vector<P3>> clip_edges;   // per facet: its cut by the near plane (perspective only)
+  bool cut(int facet) const { return !clip_edges.empty() && !clip_edges[static_cast<std::size_t>(facet)].empty(); }
   std::vector<char> occluder;         // per facet: hides and labels, as culling left it
 
   bool in_front(std::uint32_t id) const { return front[local[id]] != 0; }
@@ -302,7 +303,7 @@ bool CurveMaker::make(const std::vector<Facet>& facets, const WorldPiece& wp, Cu
   for (const Sharer& s : wp.sharers) {
     c.sharers.push_back(s.facet);
     // A facet not cut at the near plane keeps its vertices: its edge k is the world's.
-    c.sharer_edge.push_back(clip_edges[s.facet].empty() && !facets[s.facet].v.empty() ? s.edge : -1);
+    c.sharer_edge.push_back(!cut(s.facet) && !facets[s.facet].v.empty() ? s.edge : -1);
     if (wf.facets[s.facet].role[s.edge] == EdgeRole::Boundary) c.faces.push_back(wf.facets[s.facet].face);
     const Facet& f = facets[s.facet];
     any_occluder |= occluder[s.facet] || (!f.v.empty() && f.facing == Facing::EdgeOn);
@@ -429,7 +430,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
 
   ss.facets.resize(wf.facets.size());
   std::vector<std::vector<P3>>& clip_edges = M.clip_edges;  // near-plane cuts
-  clip_edges.resize(wf.facets.size());
+  if (view.perspective) clip_edges.resize(wf.facets.size());   // (no plane cuts an orthographic view)
   // Each facet on its own (in parallel, chunks of them): its screen polygon,
   // facing and depth plane. What a chunk culled is counted in its slot.
   const int nf = static_cast<int>(wf.facets.size());
@@ -609,7 +610,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   }
   // The near-plane cut of a facet bounds its region but is never drawn.
   std::deque<P3>& cut_ends = ss.ends.emplace_back();
-  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) {
+  for (std::size_t fi = 0; fi < clip_edges.size(); ++fi) {
     const auto& ce = clip_edges[fi];
     if (ce.size() != 2 || !ss.facets[fi].occluder || ce[0].xy() == ce[1].xy()) continue;
     Curve c;
