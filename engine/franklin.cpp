@@ -1,6 +1,6 @@
 // Franklin 1980, "A linear time exact hidden surface algorithm", step by step.
 // Each step is one call; the steps live in screen_scene.cpp (1, culling),
-// franklin_grid.cpp (2-9, 11) and arrangements/map_builder.cpp (10).
+// franklin_grid.cpp (2-9, 11) and arrangements/map_assembly.cpp (10).
 
 #include "arrangements/map_builder.h"
 #ifndef VISMAP_FLOAT_KERNEL
@@ -13,6 +13,32 @@
 #include "engine/visibility.h"
 
 namespace vismap {
+
+#ifndef VISMAP_FLOAT_KERNEL
+namespace {
+
+// The classified pieces as the map takes them, each pointing at its curve's end
+// points and faces list (in `faces`); the pieces are freed chunk by chunk.
+std::vector<MapPiece> map_pieces(engine::PieceChunks& pieces, const std::vector<engine::Curve>& curves,
+                                 const std::vector<FacesList>& faces) {
+  std::vector<MapPiece> mp;
+  std::size_t total = 0;
+  for (const std::vector<engine::VisiblePiece>& chunk : pieces) total += chunk.size();
+  mp.reserve(total);
+  for (std::vector<engine::VisiblePiece>& chunk : pieces) {
+    for (const engine::VisiblePiece& p : chunk) {
+      const engine::Curve& c = curves[p.curve];
+      mp.push_back(MapPiece{p.a, p.b, c.s, c.t, p.left, p.right, p.visible, p.visible && c.drawn, c.kind,
+                            &faces[p.curve], c.order_face, p.curve});
+    }
+    std::vector<engine::VisiblePiece>().swap(chunk);
+  }
+  engine::PieceChunks().swap(pieces);
+  return mp;
+}
+
+}  // namespace
+#endif
 
 #ifdef VISMAP_FLOAT_KERNEL
 #define VISMAP_FRANKLIN_ENTRY visibility_franklin_float
@@ -79,25 +105,11 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   build_map_from_floats(mp, map);
 #else
   // The map needs the curves alone from here: the facets (and their depth
-  // planes) are freed first, then the pieces chunk by chunk as they are turned
-  // into the map's.
+  // planes) are freed first. Each curve's faces list is kept for the map: the
+  // curves go once its graph has its edges.
   std::vector<Facet>().swap(ss.facets);
-  // Each curve's faces list, for the map to keep: the curves go once the graph
-  // has its edges.
   const std::vector<FacesList> faces = faces_lists(ss.curves);
-  std::vector<MapPiece> mp;
-  std::size_t total = 0;
-  for (const std::vector<VisiblePiece>& chunk : pieces) total += chunk.size();
-  mp.reserve(total);
-  for (std::vector<VisiblePiece>& chunk : pieces) {
-    for (const VisiblePiece& p : chunk) {
-      const Curve& c = ss.curves[p.curve];
-      mp.push_back(MapPiece{p.a, p.b, c.s, c.t, p.left, p.right, p.visible, p.visible && c.drawn, c.kind,
-                            &faces[p.curve], c.order_face, p.curve});
-    }
-    std::vector<VisiblePiece>().swap(chunk);
-  }
-  PieceChunks().swap(pieces);
+  std::vector<MapPiece> mp = map_pieces(pieces, ss.curves, faces);
   MapGraph graph = graph_of_pieces(mp, threads);
   // The graph holds what the map needs of the pieces and curves (their faces
   // lists aside): they are freed before the faces are traced and the map is
