@@ -6,9 +6,8 @@
 #include <boost/iterator/indirect_iterator.hpp>
 
 #include <algorithm>
-#include <cmath>
-#include <cstdint>
 #include <array>
+#include <cstdint>
 #include <deque>
 #include <memory>
 #include <vector>
