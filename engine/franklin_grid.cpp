@@ -1095,7 +1095,9 @@ void share_overlap_cuts(const ScreenScene& ss, std::vector<std::pair<int, int>>&
       const P2 &lo = forward ? C.s->xy() : C.t->xy(), &hi = forward ? C.t->xy() : C.s->xy();
       const auto first = std::upper_bound(points.begin(), points.end(), lo, less);
       const auto last = std::lower_bound(first, points.end(), hi, less);
-      if (first != last) cuts.at(ci).insert(cuts.at(ci).end(), first, last);
+      if (first == last) continue;
+      std::vector<P2>& own = cuts.at(ci);
+      own.insert(own.end(), first, last);
     }
     k = l;
   }

@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "engine/exact_kernel.h"
@@ -79,65 +80,54 @@ inline CGAL::Mpzf ExactSource::row_at(int r, std::uint32_t v, bool scaled) const
 using ExactRep = CGAL::Lazy_exact_nt_rep<mpq_class>;
 static_assert(std::is_same_v<FT, CGAL::Lazy_exact_nt<mpq_class>>, "the leaves below build mpq_class values");
 
-// A projected coordinate of an input vertex: the interval of its exact value (as
-// tight as it can be: the exact value rounded down and up), the rational on demand.
-// (64 bytes: the vertex and the row by number, everything else in the source.)
-class ProjectedRep final : public ExactRep {
+// A leaf whose exact value the source computes: the interval now, the rational
+// on demand, named by an item (a vertex or a facet), a row and a scale flag.
+// (64 bytes: everything else is in the source.)
+class SourceLeaf : public ExactRep {
  public:
-  ProjectedRep(const Interval& i, const ExactSource& source, std::uint32_t vertex, int row, bool scaled)
-      : ExactRep(i), source_(&source), vertex_(vertex), row_(static_cast<std::int8_t>(row)), scaled_(scaled) {}
-  void update_exact() const override {
-    auto* pet = new Indirect(mpq_class(source_->row_at(row_, vertex_, scaled_)));
+  SourceLeaf(const Interval& i, const ExactSource& source, std::uint32_t item, int row, bool scaled = false)
+      : ExactRep(i), source_(&source), item_(item), row_(static_cast<std::int8_t>(row)), scaled_(scaled) {}
+
+ protected:
+  void set_exact(mpq_class value) const {
+    auto* pet = new Indirect(std::move(value));
     this->keep_at(pet);
     this->set_ptr(pet);
   }
-
- private:
   const ExactSource* source_;
-  std::uint32_t vertex_;
+  std::uint32_t item_;
   std::int8_t row_;
-  bool scaled_;   // times 2^k (the screen scale)
+  bool scaled_;
 };
 
-// A perspective screen coordinate of an input vertex, (N / W) * 2^k with N and W
-// rows of the view matrix applied to it: the interval of the quotient of the
-// two exact binary floats' intervals now, the rational only on demand.
-class PerspectiveRep final : public ExactRep {
+// A projected coordinate of input vertex item_: row row_ of the view applied to
+// it, times 2^k if scaled_ (the screen scale); its interval as tight as it can
+// be (the exact value rounded down and up).
+class ProjectedRep final : public SourceLeaf {
  public:
-  PerspectiveRep(const Interval& i, const ExactSource& source, std::uint32_t vertex, int row)
-      : ExactRep(i), source_(&source), vertex_(vertex), row_(static_cast<std::int8_t>(row)) {}
-  void update_exact() const override {
-    auto* pet = new Indirect(mpq_class(source_->row_at(row_, vertex_, true)) / mpq_class(source_->row_at(3, vertex_, false)));
-    this->keep_at(pet);
-    this->set_ptr(pet);
-  }
-
- private:
-  const ExactSource* source_;
-  std::uint32_t vertex_;
-  std::int8_t row_;
+  using SourceLeaf::SourceLeaf;
+  void update_exact() const override { set_exact(mpq_class(source_->row_at(row_, item_, scaled_))); }
 };
 
-#endif
-
-#ifndef VISMAP_FLOAT_KERNEL
-// One coefficient of a facet's depth plane: its interval from the screen points'
-// intervals now, its exact value from the world on demand (each coefficient on
-// its own: most are never needed exactly, and no state is shared between them).
-class PlaneRep final : public ExactRep {
+// A perspective screen coordinate of input vertex item_, (N / W) * 2^k with N
+// row row_ and W row 3 of the view applied to it: its interval the quotient of
+// the two exact binary floats' intervals.
+class PerspectiveRep final : public SourceLeaf {
  public:
-  PlaneRep(const Interval& i, const ExactSource& source, std::uint32_t facet, int which)
-      : ExactRep(i), source_(&source), facet_(facet), which_(which) {}
+  using SourceLeaf::SourceLeaf;
   void update_exact() const override {
-    auto* pet = new Indirect(source_->plane(facet_)[static_cast<std::size_t>(which_)]);
-    this->keep_at(pet);
-    this->set_ptr(pet);
+    set_exact(mpq_class(source_->row_at(row_, item_, true)) / mpq_class(source_->row_at(3, item_, false)));
   }
+};
 
- private:
-  const ExactSource* source_;
-  std::uint32_t facet_;
-  int which_;   // 0: a, 1: b, 2: c
+// One coefficient of facet item_'s depth plane (row_ 0: a, 1: b, 2: c): its
+// interval from the screen points' intervals, its exact value from the world
+// (each coefficient on its own: most are never needed exactly, and no state is
+// shared between them).
+class PlaneRep final : public SourceLeaf {
+ public:
+  using SourceLeaf::SourceLeaf;
+  void update_exact() const override { set_exact(source_->plane(item_)[static_cast<std::size_t>(row_)]); }
 };
 #endif
 

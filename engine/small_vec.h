@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <initializer_list>
+#include <iterator>
 #include <type_traits>
 #include <utility>
 
@@ -22,7 +23,7 @@ class SmallVec {
   SmallVec(std::initializer_list<T> values) {
     for (const T& x : values) push_back(x);
   }
-  template <class It>
+  template <std::input_iterator It>
   SmallVec(It first, It last) {
     for (; first != last; ++first) push_back(*first);
   }
