@@ -4,6 +4,7 @@
 // SIGTERM, SIGHUP or SIGQUIT during the run, leaves the old files as they were
 // and no temporary behind. "-" means standard output.
 #pragma once
+#include <cstddef>
 #include <functional>
 #include <string>
 #include <utility>
@@ -31,7 +32,9 @@ struct StreamedOutput {
 };
 // As write_files_atomically: every temporary written whole first, then all renamed;
 // standard output ("-") gets its bytes last, once every file is in place.
-void write_outputs_atomically(const std::vector<StreamedOutput>& outputs);
+// `background`: each file's pieces are written by a second thread while the next
+// ones are rendered.
+void write_outputs_atomically(const std::vector<StreamedOutput>& outputs, bool background = false);
 
 // A temporary being written, for tests and callers that stream: created next
 // to `path`, removed on destruction unless commit() renamed it over `path`.
@@ -52,6 +55,8 @@ class AtomicFile {
   std::string path_, tmp_;
   int fd_ = -1;
   int slot_ = -1;
+  static constexpr std::size_t kFlushStep = std::size_t{8} << 20;
+  std::size_t written_ = 0, flushing_ = 0;   // bytes written; of those, sent to the disk
   bool committed_ = false;
 };
 

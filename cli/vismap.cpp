@@ -14,6 +14,7 @@
 #include "arrangements/svg_writer.h"
 #include "engine/camera.h"
 #include "engine/scene.h"
+#include "engine/threads.h"
 #include "engine/visibility.h"
 #include "verify/verify_cli.h"
 
@@ -199,7 +200,8 @@ int main(int argc, char** argv) {
     if (!svg_path.empty()) outputs.push_back({svg_path, [&](const auto& write) { write(vismap::to_svg(map, scene, view, svg)); }});
     if (!painter_path.empty())
       outputs.push_back({painter_path, [&](const auto& write) { write(vismap::to_painter_svg(fragments, map, scene, view, svg)); }});
-    vismap::write_outputs_atomically(outputs);   // all or none
+    // All or none; on several threads, the files are written while the rest is formatted.
+    vismap::write_outputs_atomically(outputs, vismap::engine::thread_count(eng.threads, scene.faces.size()) > 1);
     if (json_path.empty() && svg_path.empty() && painter_path.empty())
       std::fprintf(stderr, "vismap: %s: %zu regions, %zu segments (no output asked for: use -o or --json)\n",
                    scene_path.c_str(), map.regions.size(), map.segments.size());

@@ -21,25 +21,12 @@
 #include <CGAL/FPU.h>
 
 #include "engine/exact_kernel.h"
+#include "engine/threads.h"
 #ifdef _OPENMP
 #include <omp.h>
 #endif
 
 namespace vismap::engine {
-
-// The cores this process may use: those it may run on, fewer where a cgroup's
-// CPU quota (a container's --cpus) allows less (more threads than that would
-// only wait for each other).
-int usable_cores();
-
-// The number of threads a run uses: `asked` if positive, else every usable core,
-// but one for a scene of fewer than 8192 faces (starting the threads and
-// counting references atomically cost more there than the threads gain: the
-// elephant's 5 558 faces took 16% longer on two threads than on one).
-inline int thread_count(int asked, std::size_t faces) {
-  if (asked > 0) return asked;
-  return faces < 8192 ? 1 : usable_cores();
-}
 
 // body(i) for every i in [0, n), on `threads` threads, scheduled dynamically
 // (cells and curves differ widely in work). The first exception a body throws is

@@ -343,24 +343,36 @@ TEST(Atomic, AFailedRunLeavesTheOldFilesAndNoTemporary) {
 // Streamed outputs (the JSON of a large map comes in pieces): written whole, in
 // order; a render that fails midway leaves the old files and no temporary.
 TEST(Atomic, StreamedOutputsAreWholeOrAbsent) {
-  TempDir out("atomic_stream");
-  const std::string a = out.write("a.json", "old a"), b = out.write("b.svg", "old b");
-  auto pieces = [](int n) {
-    return [n](const std::function<void(const std::string&)>& write) {
-      for (int i = 0; i < n; ++i) write(std::to_string(i) + ",");
+  // (background: a second thread writes the pieces while the next are rendered)
+  for (const bool background : {false, true}) {
+    TempDir out("atomic_stream");
+    const std::string a = out.write("a.json", "old a"), b = out.write("b.svg", "old b");
+    auto pieces = [](int n) {
+      return [n](const std::function<void(const std::string&)>& write) {
+        for (int i = 0; i < n; ++i) write(std::to_string(i) + ",");
+      };
     };
-  };
-  vismap::write_outputs_atomically({{a, pieces(3)}, {b, pieces(2)}});
-  EXPECT_EQ(vismap_test::slurp(a), "0,1,2,");
-  EXPECT_EQ(vismap_test::slurp(b), "0,1,");
-  auto failing = [](const std::function<void(const std::string&)>& write) {
-    write("half");
-    throw std::runtime_error("render failed");
-  };
-  EXPECT_THROW(vismap::write_outputs_atomically({{a, pieces(5)}, {b, failing}}), std::runtime_error);
-  EXPECT_EQ(vismap_test::slurp(a), "0,1,2,");
-  EXPECT_EQ(vismap_test::slurp(b), "0,1,");
-  EXPECT_EQ(out.names(), (std::vector<std::string>{"a.json", "b.svg"}));
+    vismap::write_outputs_atomically({{a, pieces(3)}, {b, pieces(2)}}, background);
+    EXPECT_EQ(vismap_test::slurp(a), "0,1,2,");
+    EXPECT_EQ(vismap_test::slurp(b), "0,1,");
+    auto failing = [](const std::function<void(const std::string&)>& write) {
+      write("half");
+      throw std::runtime_error("render failed");
+    };
+    EXPECT_THROW(vismap::write_outputs_atomically({{a, pieces(5)}, {b, failing}}, background), std::runtime_error);
+    EXPECT_EQ(vismap_test::slurp(a), "0,1,2,");
+    EXPECT_EQ(vismap_test::slurp(b), "0,1,");
+    EXPECT_EQ(out.names(), (std::vector<std::string>{"a.json", "b.svg"}));
+    // Many pieces, more than wait at once, and large ones: all of them, in order.
+    std::string expected;
+    for (int i = 0; i < 200; ++i) expected += std::string(static_cast<std::size_t>(i % 7) * 40000, 'a' + i % 26) + ",";
+    vismap::write_outputs_atomically({{a, [&](const std::function<void(const std::string&)>& write) {
+                                         for (int i = 0; i < 200; ++i)
+                                           write(std::string(static_cast<std::size_t>(i % 7) * 40000, 'a' + i % 26) + ",");
+                                       }}},
+                                     background);
+    EXPECT_TRUE(vismap_test::slurp(a) == expected) << "background " << background;
+  }
 }
 
 TEST(Atomic, ASignalDuringTheWriteRemovesTheTemporary) {
