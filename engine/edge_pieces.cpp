@@ -116,19 +116,23 @@ bool cells_from_intervals(const Vec3& p, const Vec3& q, int k, const Cells& cell
 
 std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, int cell_bits, int threads) {
   const Cells cells(cell_bits);
-  std::vector<Edge> edges;
-  std::size_t corners = 0;
-  for (const auto& f : wf.facets) corners += f.v.size();
-  edges.reserve(corners);
-  for (int f = 0; f < static_cast<int>(wf.facets.size()); ++f) {
-    const auto& v = wf.facets[f].v;
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      const std::uint32_t p = v[i], q = v[(i + 1) % v.size()];
-      const Vec3 &a = scene.vertices[p], &b = scene.vertices[q];
-      const std::uint8_t axis = a.x != b.x ? 0 : a.y != b.y ? 1 : 2;   // (p != q)
-      edges.push_back(Edge{f, static_cast<std::uint32_t>(i), axis, coord(a, axis) < coord(b, axis), p, q});
+  // Every facet edge, in facet order (chunks of facets in parallel, each edge
+  // in its slot: start[f] is facet f's first).
+  const int nf = static_cast<int>(wf.facets.size());
+  std::vector<std::size_t> start(static_cast<std::size_t>(nf) + 1, 0);
+  for (int f = 0; f < nf; ++f) start[f + 1] = start[f] + wf.facets[f].v.size();
+  std::vector<Edge> edges(start[nf]);
+  parallel_chunks(nf, 4096, threads, [&](int, Chunk r) {
+    for (int f = r.begin; f < r.end; ++f) {
+      const auto& v = wf.facets[f].v;
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        const std::uint32_t p = v[i], q = v[(i + 1) % v.size()];
+        const Vec3 &a = scene.vertices[p], &b = scene.vertices[q];
+        const std::uint8_t axis = a.x != b.x ? 0 : a.y != b.y ? 1 : 2;   // (p != q)
+        edges[start[f] + i] = Edge{f, static_cast<std::uint32_t>(i), axis, coord(a, axis) < coord(b, axis), p, q};
+      }
     }
-  }
+  });
   auto vertex = [&](std::uint32_t id) -> const Vec3& { return scene.vertices[id]; };
   auto exact_key = [&](const Edge& e) {
     // Keyed from the lower vertex id so that both directions build the same numbers.
@@ -164,8 +168,6 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
     return x.edge < y.edge;   // (a total order: the same for every thread count)
   }, threads);
 
-  std::vector<WorldPiece> pieces;
-  pieces.reserve(edges.size() * 3 / 5);
   auto sharer = [](const Edge& e) { return Sharer{e.facet, e.edge, e.forward}; };
   auto by_facet = [](const Sharer& x, const Sharer& y) {
     return x.facet < y.facet || (x.facet == y.facet && x.edge < y.edge);
@@ -179,10 +181,15 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
     std::uint32_t edge;
     bool start;
   };
-  std::vector<Event> events;
-  std::vector<std::uint32_t> active;
-  auto sweep_line = [&](const std::uint32_t* line, std::size_t n) {
+  struct Scratch {
+    std::vector<Event> events;
+    std::vector<std::uint32_t> active, group;
+    std::vector<std::pair<LineKey, std::uint32_t>> keyed;
+  };
+  auto sweep_line = [&](const std::uint32_t* line, std::size_t n, Scratch& w, std::vector<WorldPiece>& pieces) {
     const int k = edges[line[0]].axis;
+    std::vector<Event>& events = w.events;
+    std::vector<std::uint32_t>& active = w.active;
     events.clear();
     for (std::size_t i = 0; i < n; ++i) {
       const Edge& e = edges[line[i]];
@@ -212,49 +219,73 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
     }
   };
 
-  std::vector<std::uint32_t> group;
-  std::vector<std::pair<LineKey, std::uint32_t>> keyed;
-  for (std::size_t lo = 0; lo < slots.size();) {
-    std::size_t hi = lo + 1;
-    bool one_pair = true;
-    for (; hi < slots.size() && slots[hi].hash == slots[lo].hash; ++hi) one_pair &= slots[hi].pair == slots[lo].pair;
-    if (one_pair) {
-      // Alone on its line (with any edges between the same two vertices): one piece.
-      const Edge& e = slots[lo].e;
-      WorldPiece piece{e.forward ? e.p : e.q, e.forward ? e.q : e.p, {}};
-      for (std::size_t i = lo; i < hi; ++i) piece.sharers.push_back(sharer(slots[i].e));
-      std::sort(piece.sharers.begin(), piece.sharers.end(), by_facet);
-      pieces.push_back(std::move(piece));
-    } else {
-      // Several vertex pairs share the cells: told apart by exact keys.
-      keyed.clear();
-      for (std::size_t i = lo; i < hi; ++i) keyed.emplace_back(exact_key(slots[i].e), slots[i].edge);
-      std::sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) {
-        if (key_less(x.first, y.first)) return true;
-        if (key_less(y.first, x.first)) return false;
-        return x.second < y.second;
-      });
-      for (std::size_t a = 0; a < keyed.size();) {
-        std::size_t b = a + 1;
-        while (b < keyed.size() && !key_less(keyed[a].first, keyed[b].first)) ++b;
-        group.clear();
-        for (std::size_t i = a; i < b; ++i) group.push_back(keyed[i].second);
-        sweep_line(group.data(), group.size());
-        a = b;
+  // The pieces of the runs of equal cells that start in slots [from, to).
+  auto pieces_of_runs = [&](std::size_t from, std::size_t to, Scratch& w, std::vector<WorldPiece>& pieces) {
+    for (std::size_t lo = from; lo < to;) {
+      std::size_t hi = lo + 1;
+      bool one_pair = true;
+      for (; hi < slots.size() && slots[hi].hash == slots[lo].hash; ++hi) one_pair &= slots[hi].pair == slots[lo].pair;
+      if (one_pair) {
+        // Alone on its line (with any edges between the same two vertices): one piece.
+        const Edge& e = slots[lo].e;
+        WorldPiece piece{e.forward ? e.p : e.q, e.forward ? e.q : e.p, {}};
+        for (std::size_t i = lo; i < hi; ++i) piece.sharers.push_back(sharer(slots[i].e));
+        std::sort(piece.sharers.begin(), piece.sharers.end(), by_facet);
+        pieces.push_back(std::move(piece));
+      } else {
+        // Several vertex pairs share the cells: told apart by exact keys.
+        auto& keyed = w.keyed;
+        keyed.clear();
+        for (std::size_t i = lo; i < hi; ++i) keyed.emplace_back(exact_key(slots[i].e), slots[i].edge);
+        std::sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) {
+          if (key_less(x.first, y.first)) return true;
+          if (key_less(y.first, x.first)) return false;
+          return x.second < y.second;
+        });
+        for (std::size_t a = 0; a < keyed.size();) {
+          std::size_t b = a + 1;
+          while (b < keyed.size() && !key_less(keyed[a].first, keyed[b].first)) ++b;
+          w.group.clear();
+          for (std::size_t i = a; i < b; ++i) w.group.push_back(keyed[i].second);
+          sweep_line(w.group.data(), w.group.size(), w, pieces);
+          a = b;
+        }
       }
+      lo = hi;
     }
-    lo = hi;
+  };
+  // Chunks of slots cut where a run starts, in parallel; their pieces joined in
+  // chunk order are those of one pass over the runs in order.
+  const std::size_t nslots = slots.size(), nchunks = std::clamp<std::size_t>(nslots / 16384, 1, 256);
+  std::vector<std::size_t> cut(nchunks + 1, nslots);
+  for (std::size_t c = 0; c < nchunks; ++c) {
+    std::size_t at = nslots * c / nchunks;
+    while (at > 0 && at < nslots && slots[at].hash == slots[at - 1].hash) ++at;
+    cut[c] = at;
   }
+  std::vector<std::vector<WorldPiece>> found(nchunks);
+  parallel_for(static_cast<int>(nchunks), threads, [&](int c) {
+    Scratch w;
+    const auto k = static_cast<std::size_t>(c);
+    found[k].reserve((cut[k + 1] - cut[k]) * 3 / 5);
+    pieces_of_runs(cut[k], cut[k + 1], w, found[k]);
+  });
   // In facet order (of each piece's first sharer; stable): the stages that read
-  // the pieces then walk the facets and vertices in order.
-  std::vector<std::uint32_t> first(wf.facets.size() + 1, 0);
-  for (const WorldPiece& p : pieces) ++first[p.sharers[0].facet + 1];
-  for (std::size_t f = 0; f < wf.facets.size(); ++f) first[f + 1] += first[f];
-  std::vector<std::uint32_t> place(pieces.size());
-  for (std::uint32_t i = 0; i < pieces.size(); ++i) place[first[pieces[i].sharers[0].facet]++] = i;
-  std::vector<WorldPiece> ordered;
-  ordered.reserve(pieces.size());
-  for (std::uint32_t i : place) ordered.push_back(std::move(pieces[i]));
+  // the pieces then walk the facets and vertices in order. Each piece's place,
+  // in one pass over the chunks in order; the pieces moved there in parallel.
+  std::vector<std::uint32_t> next(wf.facets.size() + 1, 0);
+  for (const auto& f : found)
+    for (const WorldPiece& p : f) ++next[p.sharers[0].facet + 1];
+  for (std::size_t f = 0; f < wf.facets.size(); ++f) next[f + 1] += next[f];
+  std::vector<std::vector<std::uint32_t>> place(nchunks);
+  for (std::size_t c = 0; c < nchunks; ++c)
+    for (const WorldPiece& p : found[c]) place[c].push_back(next[p.sharers[0].facet]++);
+  std::vector<WorldPiece> ordered(next.back());
+  parallel_for(static_cast<int>(nchunks), threads, [&](int c) {
+    const auto k = static_cast<std::size_t>(c);
+    for (std::size_t i = 0; i < found[k].size(); ++i) ordered[place[k][i]] = std::move(found[k][i]);
+    std::vector<WorldPiece>().swap(found[k]);
+  });
   return ordered;
 }
 
