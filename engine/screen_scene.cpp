@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <iterator>
 #include <limits>
 #include <stdexcept>
@@ -182,27 +183,39 @@ bool is_crease(const Spanning& f, const Spanning& g, double c) {
 // only the order depends on them). Everything built from them (edge pieces,
 // screen facets, curves) then lies in memory roughly as on screen, and the
 // later stages walk it in that order, without cache misses.
-void order_on_screen(WorldFacets& wf, const Scene& scene, const View& view) {
+void order_on_screen(WorldFacets& wf, const Scene& scene, const View& view, int threads) {
   const std::size_t n = wf.facets.size();
   std::vector<std::array<double, 2>> centre(n);
+  // The centres and (per chunk, then together) their bounding box.
+  const int size = 8192, chunks = chunk_count(static_cast<int>(n), size);
+  std::vector<std::array<double, 4>> boxes(static_cast<std::size_t>(chunks), {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL});
+  parallel_chunks(static_cast<int>(n), size, threads, [&](int c, Chunk part) {
+    auto& [x0, y0, x1, y1] = boxes[static_cast<std::size_t>(c)];
+    for (auto i = static_cast<std::size_t>(part.begin); i < static_cast<std::size_t>(part.end); ++i) {
+      double sx = 0, sy = 0;
+      for (auto id : wf.facets[i].v) {
+        const Vec3& p = scene.vertices[id];
+        auto row = [&](int r) { return view.m[r][0] * p.x + view.m[r][1] * p.y + view.m[r][2] * p.z + view.m[r][3]; };
+        const double w = view.perspective ? row(3) : 1;
+        sx += row(0) / w;
+        sy += row(1) / w;
+      }
+      const double k = static_cast<double>(wf.facets[i].v.size());
+      centre[i] = {sx / k, sy / k};
+      if (std::isfinite(centre[i][0]) && std::isfinite(centre[i][1])) {
+        x0 = std::min(x0, centre[i][0]);
+        x1 = std::max(x1, centre[i][0]);
+        y0 = std::min(y0, centre[i][1]);
+        y1 = std::max(y1, centre[i][1]);
+      }
+    }
+  });
   double x0 = HUGE_VAL, y0 = HUGE_VAL, x1 = -HUGE_VAL, y1 = -HUGE_VAL;
-  for (std::size_t i = 0; i < n; ++i) {
-    double sx = 0, sy = 0;
-    for (auto id : wf.facets[i].v) {
-      const Vec3& p = scene.vertices[id];
-      auto row = [&](int r) { return view.m[r][0] * p.x + view.m[r][1] * p.y + view.m[r][2] * p.z + view.m[r][3]; };
-      const double w = view.perspective ? row(3) : 1;
-      sx += row(0) / w;
-      sy += row(1) / w;
-    }
-    const double k = static_cast<double>(wf.facets[i].v.size());
-    centre[i] = {sx / k, sy / k};
-    if (std::isfinite(centre[i][0]) && std::isfinite(centre[i][1])) {
-      x0 = std::min(x0, centre[i][0]);
-      x1 = std::max(x1, centre[i][0]);
-      y0 = std::min(y0, centre[i][1]);
-      y1 = std::max(y1, centre[i][1]);
-    }
+  for (const auto& b : boxes) {
+    x0 = std::min(x0, b[0]);
+    y0 = std::min(y0, b[1]);
+    x1 = std::max(x1, b[2]);
+    y1 = std::max(y1, b[3]);
   }
   const double w = x1 > x0 ? x1 - x0 : 1, h = y1 > y0 ? y1 - y0 : 1;
   // The facets of one polygon (consecutive) share its first facet's key and so
@@ -214,10 +227,11 @@ void order_on_screen(WorldFacets& wf, const Scene& scene, const View& view) {
                   ? key[i - 1].first
                   : morton((centre[i][0] - x0) / w, (centre[i][1] - y0) / h),
               static_cast<std::uint32_t>(i)};
-  std::sort(key.begin(), key.end());   // ties by index: deterministic
-  std::vector<WorldFacet> facets;
-  facets.reserve(n);
-  for (const auto& [unused, i] : key) facets.push_back(std::move(wf.facets[i]));
+  parallel_sort(key.begin(), key.end(), std::less<>(), threads);   // ties by index: deterministic
+  std::vector<WorldFacet> facets(n);
+  parallel_chunks(static_cast<int>(n), size, threads, [&](int, Chunk r) {
+    for (int k = r.begin; k < r.end; ++k) facets[static_cast<std::size_t>(k)] = std::move(wf.facets[key[static_cast<std::size_t>(k)].second]);
+  });
   wf.facets = std::move(facets);
 }
 
@@ -359,9 +373,9 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   M.view = &view;
   M.cos_crease = std::cos(opt.crease_deg * M_PI / 180);
   M.smooth = opt.smooth;
-  WorldFacets& wf = M.wf = make_world_facets(scene);
-  order_on_screen(wf, scene, view);
   const int threads = thread_count(opt.threads, scene.faces.size());
+  WorldFacets& wf = M.wf = make_world_facets(scene, threads);
+  order_on_screen(wf, scene, view, threads);
   std::vector<WorldPiece>& pieces = M.pieces = match_edges(scene, wf, /*cell_bits=*/20, threads);
   stats.count("faces_degenerate_dropped", wf.degenerate);
   stats.count("faces_nonplanar_fanned", wf.nonplanar);

@@ -6,6 +6,9 @@
 
 #include <algorithm>
 #include <cstring>
+#include <iterator>
+
+#include "engine/parallel.h"
 
 namespace vismap::engine {
 namespace {
@@ -185,13 +188,13 @@ std::vector<std::uint32_t> canonical_vertex_ids(const Scene& scene) {
   return canon;
 }
 
-WorldFacets make_world_facets(const Scene& scene) {
-  WorldFacets out;
-  const std::vector<std::uint32_t> canon = canonical_vertex_ids(scene);
-  out.facets.reserve(scene.faces.size());
+namespace {
+
+// Faces [r.begin, r.end) into `out`, in order (with their counts).
+void facets_of_faces(const Scene& scene, const std::vector<std::uint32_t>& canon, Chunk r, WorldFacets& out) {
   std::vector<std::uint32_t> ids;
   std::vector<Q3> p;
-  for (std::size_t f = 0; f < scene.faces.size(); ++f) {
+  for (std::size_t f = static_cast<std::size_t>(r.begin); f < static_cast<std::size_t>(r.end); ++f) {
     // Drop consecutive repeats (cyclically): they are the same vertex.
     ids.clear();
     p.clear();
@@ -244,6 +247,31 @@ WorldFacets make_world_facets(const Scene& scene) {
         out.facets.push_back(triangle_facet(face, ids, n, 0, k, k + 1));
         out.facets.back().planar = planar;
       }
+  }
+}
+
+}  // namespace
+
+WorldFacets make_world_facets(const Scene& scene, int threads) {
+  const std::vector<std::uint32_t> canon = canonical_vertex_ids(scene);
+  // Chunks of faces in parallel, joined in order.
+  const int nfaces = static_cast<int>(scene.faces.size()), size = 4096;
+  std::vector<WorldFacets> chunks(static_cast<std::size_t>(chunk_count(nfaces, size)));
+  parallel_chunks(nfaces, size, threads, [&](int k, Chunk r) {
+    WorldFacets& c = chunks[static_cast<std::size_t>(k)];
+    c.facets.reserve(static_cast<std::size_t>(r.end - r.begin));
+    facets_of_faces(scene, canon, r, c);
+  });
+  WorldFacets out;
+  std::size_t total = 0;
+  for (const WorldFacets& c : chunks) total += c.facets.size();
+  out.facets.reserve(total);
+  for (WorldFacets& c : chunks) {
+    std::move(c.facets.begin(), c.facets.end(), std::back_inserter(out.facets));
+    std::vector<WorldFacet>().swap(c.facets);
+    out.degenerate += c.degenerate;
+    out.nonplanar += c.nonplanar;
+    out.nonconvex += c.nonconvex;
   }
   return out;
 }

@@ -31,7 +31,7 @@ struct WorldFacets {
 };
 
 // Vertex ids in facets are canonical: equal coordinates give one id, so that
-// polygon soups share end points by identity.
-WorldFacets make_world_facets(const Scene& scene);
+// polygon soups share end points by identity. Chunks of faces on `threads` threads.
+WorldFacets make_world_facets(const Scene& scene, int threads = 1);
 
 }  // namespace vismap::engine
