@@ -16,7 +16,9 @@
 #include <algorithm>
 #include <cstddef>
 #include <exception>
+#include <iterator>
 #include <mutex>
+#include <vector>
 
 #include <CGAL/FPU.h>
 
@@ -104,6 +106,30 @@ inline Chunk chunk(int k, int n, int size) { return {k * size, std::min(n, (k + 
 template <class Body>
 void parallel_chunks(int n, int size, int threads, Body&& body) {
   parallel_for(chunk_count(n, size), threads, [&](int k) { body(k, chunk(k, n, size)); });
+}
+
+// A vector of n items made in parallel: make(k, i, item) fills item i (of chunk
+// k, chunks of `size`), each default-made on the thread that fills it; waves of
+// 64 chunks, each appended in order before the next, so that at most one wave is
+// held twice. (Kernel numbers default-made on one thread hold that thread's
+// shared zero: replaced on other threads, they would all release it there at
+// once, one reference count bouncing between the cores.)
+template <class T, class Make>
+std::vector<T> parallel_make(int n, int size, int threads, Make&& make) {
+  std::vector<T> out;
+  out.reserve(static_cast<std::size_t>(n));
+  const int chunks = chunk_count(n, size), wave = 64;
+  for (int w = 0; w < chunks; w += wave) {
+    std::vector<std::vector<T>> made(static_cast<std::size_t>(std::min(wave, chunks - w)));
+    parallel_for(static_cast<int>(made.size()), threads, [&](int j) {
+      const Chunk r = chunk(w + j, n, size);
+      std::vector<T>& items = made[static_cast<std::size_t>(j)];
+      items.resize(static_cast<std::size_t>(r.end - r.begin));
+      for (int i = r.begin; i < r.end; ++i) make(w + j, i, items[static_cast<std::size_t>(i - r.begin)]);
+    });
+    for (std::vector<T>& items : made) std::move(items.begin(), items.end(), std::back_inserter(out));
+  }
+  return out;
 }
 
 }  // namespace vismap::engine

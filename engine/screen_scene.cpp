@@ -405,16 +405,13 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   exact->spanning.resize(wf.facets.size());
   ss.exact = exact;
   M.exact = exact.get();
-  std::vector<P3>& sv = ss.images;
-  sv.resize(used.size());
-  M.sv = sv.data();
   std::vector<char>& front = M.front;
   front.assign(used.size(), 0);
   std::vector<std::int8_t> zsign(used.size(), 1);   // sign of Z (perspective): the near plane is Z = 0
   // Input vertices: exact values that no rational arithmetic is done for unless
   // a predicate needs them (engine/lazy_leaves.h). In parallel, chunks of them.
   const int nu = static_cast<int>(used.size());
-  auto project_vertex = [&](std::uint32_t u) {
+  auto project_vertex = [&](std::uint32_t u, P3& image) {
     const Vec3& p = scene.vertices[used[u]];
     if (!view.perspective) {
       // Each coordinate is a double where it is one exactly, else a lazy leaf:
@@ -424,7 +421,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
       for (int r = 0; r < 3; ++r)
         if (!exact_in_doubles(view.m[r], p, d[r])) d[r] = std::nan("");
       auto coordinate = [&](int r) { return std::isnan(d[r]) ? projected_number(*exact, used[u], r, true) : scaled(d[r], k); };
-      sv[u] = P3{coordinate(0), coordinate(1), coordinate(2)};
+      image = P3{coordinate(0), coordinate(1), coordinate(2)};
       return;
     }
     // Perspective: X/W, Y/W, Z/W as lazy leaves (the quotient's interval now),
@@ -432,17 +429,17 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     zsign[u] = static_cast<std::int8_t>(projected_sign(view.m[2], p));
     front[u] = zsign[u] > 0 && projected_sign(view.m[3], p) > 0;
     if (!front[u]) return;
-    sv[u] = P3{perspective_number(*exact, used[u], 0), perspective_number(*exact, used[u], 1),
+    image = P3{perspective_number(*exact, used[u], 0), perspective_number(*exact, used[u], 1),
                perspective_number(*exact, used[u], 2)};
   };
-  parallel_chunks(nu, 1024, threads, [&](int, Chunk r) {
-    for (int u = r.begin; u < r.end; ++u) project_vertex(static_cast<std::uint32_t>(u));
+  std::vector<P3>& sv = ss.images = parallel_make<P3>(nu, 1024, threads, [&](int, int u, P3& image) {
+    project_vertex(static_cast<std::uint32_t>(u), image);
   });
+  M.sv = sv.data();
   auto in_front = [&](std::uint32_t id) { return M.in_front(id); };
   auto image = [&](std::uint32_t id) -> const P3& { return M.image(id); };
   auto clip_point = [&](std::uint32_t a, std::uint32_t b) { return M.clip_point(a, b); };
 
-  ss.facets.resize(wf.facets.size());
   std::vector<std::vector<P3>>& clip_edges = M.clip_edges;  // near-plane cuts
   if (view.perspective) clip_edges.resize(wf.facets.size());   // (no plane cuts an orthographic view)
   // Each facet on its own (in parallel, chunks of them): its screen polygon,
@@ -450,9 +447,8 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   const int nf = static_cast<int>(wf.facets.size());
   const int facets_per_chunk = 512;
   std::vector<std::array<std::int64_t, 2>> culled(static_cast<std::size_t>(chunk_count(nf, facets_per_chunk)));
-  auto project_facet = [&](std::size_t fi, std::int64_t& outside, std::int64_t& edge_on) {
+  auto project_facet = [&](std::size_t fi, Facet& f, std::int64_t& outside, std::int64_t& edge_on) {
     const WorldFacet& w = wf.facets[fi];
-    Facet& f = ss.facets[fi];
     f.face = w.face;
     f.planar = w.planar;
     const std::size_t n = w.v.size();
@@ -533,9 +529,9 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
       break;
     }
   };
-  parallel_chunks(nf, facets_per_chunk, threads, [&](int c, Chunk r) {
+  ss.facets = parallel_make<Facet>(nf, facets_per_chunk, threads, [&](int c, int fi, Facet& f) {
     auto& [outside, edge_on] = culled[static_cast<std::size_t>(c)];
-    for (int fi = r.begin; fi < r.end; ++fi) project_facet(static_cast<std::size_t>(fi), outside, edge_on);
+    project_facet(static_cast<std::size_t>(fi), f, outside, edge_on);
   });
   std::int64_t outside = 0, edge_on = 0;
   for (const auto& c : culled) {
