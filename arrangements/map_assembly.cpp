@@ -82,9 +82,15 @@ std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph
     return c == CGAL::SMALLER || (c == CGAL::EQUAL && a.at < b.at);
   }, threads);
   filter_counts = before_sort;
+  // Where a new point starts (comparisons in parallel), then the points in order.
+  const int n = static_cast<int>(ends.size());
+  std::vector<char> starts(ends.size());
+  engine::parallel_chunks(n, 16384, threads, [&](int, engine::Chunk r) {
+    for (int k = r.begin; k < r.end; ++k) starts[k] = k == 0 || compare(ends[k - 1], ends[k]) != CGAL::EQUAL;
+  });
   std::vector<int> vertex_of(ends.size());
   for (std::size_t k = 0; k < ends.size(); ++k) {
-    if (k == 0 || compare(ends[k - 1], ends[k]) != CGAL::EQUAL) g.add_point(point(ends[k]));
+    if (starts[k]) g.add_point(point(ends[k]));
     vertex_of[ends[k].at] = static_cast<int>(g.points.size()) - 1;
   }
   return vertex_of;
@@ -113,6 +119,7 @@ CGAL::Sign compare_y_at(const P2& x, const P2& u1, const P2& v1, const P2& u2, c
 
 struct Assembly {
   MapGraph& g;
+  int threads = 1;
   int nverts = 0, nhalf = 0;
   std::vector<int> first;      // vertex -> its outgoing halfedges rot[first[w] .. first[w+1])
   std::vector<int> rot;        // counter-clockwise from angle 0 (the +x direction)
@@ -136,29 +143,35 @@ struct Assembly {
     std::vector<int> fill(first.begin(), first.end() - 1);
     for (int h = 0; h < nhalf; ++h) rot[fill[source(h)]++] = h;
     upper.resize(nhalf);
-    for (int h = 0; h < nhalf; ++h) {
-      const CGAL::Comparison_result dy = CGAL::compare_y(at(target(h)), at(source(h)));
-      upper[h] = dy == CGAL::LARGER || (dy == CGAL::EQUAL && target(h) > source(h));
-    }
-    for (int w = 0; w < nverts; ++w) {
-      auto before = [&](int h1, int h2) {
-        if (upper[h1] != upper[h2]) return upper[h1] > upper[h2];
-        const CGAL::Orientation o = CGAL::orientation(at(w), at(target(h1)), at(target(h2)));
-        if (o == CGAL::COLLINEAR && h1 != h2) broken("overlapping pieces with different end points");
-        return o == CGAL::LEFT_TURN;
-      };
-      std::sort(rot.begin() + first[w], rot.begin() + first[w + 1], before);
-    }
+    engine::parallel_chunks(nhalf, 16384, threads, [&](int, engine::Chunk r) {
+      for (int h = r.begin; h < r.end; ++h) {
+        const CGAL::Comparison_result dy = CGAL::compare_y(at(target(h)), at(source(h)));
+        upper[h] = dy == CGAL::LARGER || (dy == CGAL::EQUAL && target(h) > source(h));
+      }
+    });
+    // Each vertex's edges, and their places around it: chunks of vertices in parallel.
     pos.resize(nhalf);
-    for (int w = 0; w < nverts; ++w)
-      for (int k = first[w]; k < first[w + 1]; ++k) pos[rot[k]] = k - first[w];
+    engine::parallel_chunks(nverts, 4096, threads, [&](int, engine::Chunk r) {
+      for (int w = r.begin; w < r.end; ++w) {
+        auto before = [&](int h1, int h2) {
+          if (upper[h1] != upper[h2]) return upper[h1] > upper[h2];
+          const CGAL::Orientation o = CGAL::orientation(at(w), at(target(h1)), at(target(h2)));
+          if (o == CGAL::COLLINEAR && h1 != h2) broken("overlapping pieces with different end points");
+          return o == CGAL::LEFT_TURN;
+        };
+        std::sort(rot.begin() + first[w], rot.begin() + first[w + 1], before);
+        for (int k = first[w]; k < first[w + 1]; ++k) pos[rot[k]] = k - first[w];
+      }
+    });
     // Face on the left: arriving at w along h, leave along the edge just
     // clockwise of the way back.
     g.next.resize(nhalf);
-    for (int h = 0; h < nhalf; ++h) {
-      const int w = target(h), deg = first[w + 1] - first[w], back = pos[h ^ 1];
-      g.next[h] = rot[first[w] + (back == 0 ? deg - 1 : back - 1)];
-    }
+    engine::parallel_chunks(nhalf, 16384, threads, [&](int, engine::Chunk r) {
+      for (int h = r.begin; h < r.end; ++h) {
+        const int w = target(h), deg = first[w + 1] - first[w], back = pos[h ^ 1];
+        g.next[h] = rot[first[w] + (back == 0 ? deg - 1 : back - 1)];
+      }
+    });
   }
 
   // Boundary cycles, and which are counter-clockwise (signed area > 0: on
@@ -361,7 +374,7 @@ void assemble_map(std::vector<MapPiece>& pieces, VisibilityMap& map, int threads
 }
 
 void finish_map(MapGraph& g, VisibilityMap& map, int threads) {
-  Assembly a{g};
+  Assembly a{g, threads};
   a.sort_around_vertices();
   a.trace_cycles();
 
@@ -395,8 +408,13 @@ void finish_map(MapGraph& g, VisibilityMap& map, int threads) {
   g.unbounded = g.faces++;
   if (!outer_cycles.empty()) {
     const Columns cols(g);
+    const int ncomp = static_cast<int>(outer_cycles.size());
+    std::vector<int> below(outer_cycles.size());   // the rays in parallel, the faces in order
+    engine::parallel_chunks(ncomp, 256, threads, [&](int, engine::Chunk r) {
+      for (int k = r.begin; k < r.end; ++k) below[k] = face_below(a, cols, lowest[k]);
+    });
     for (std::size_t k = 0; k < outer_cycles.size(); ++k) {
-      const int h = face_below(a, cols, lowest[k]);
+      const int h = below[k];
       const int f = h < 0 ? g.unbounded : face_of[a.cycle[h]];
       if (f < 0) broken("a face found out of order");
       face_of[outer_cycles[k]] = f;

@@ -73,6 +73,32 @@ void parallel_for(int n, int threads, Body&& body) {
   for (int i = 0; i < n; ++i) body(i);
 }
 
+// std::inplace_merge of sorted [first, middle) and [middle, last) (stable), in
+// `parts` pieces side by side: the larger run's middle element splits both runs
+// (binary search in the other), one rotation puts the two left parts before the
+// two right ones, and the halves are merged in parallel, each the same way.
+template <class It, class Less>
+void parallel_inplace_merge(It first, It middle, It last, Less less, int parts) {
+  if (parts < 2 || last - first < 16384 || first == middle || middle == last) {
+    std::inplace_merge(first, middle, last, less);
+    return;
+  }
+  It a_cut, b_cut;   // left: [first, a_cut) and [middle, b_cut); equal elements keep A before B
+  if (middle - first >= last - middle) {
+    a_cut = first + (middle - first) / 2;
+    b_cut = std::lower_bound(middle, last, *a_cut, less);
+  } else {
+    b_cut = middle + (last - middle) / 2;
+    a_cut = std::upper_bound(first, middle, *b_cut, less);
+  }
+  // [a_cut, b_cut) becomes B's left part, then A's right part (from `split`).
+  const It split = std::rotate(a_cut, middle, b_cut);
+  parallel_for(2, 2, [&](int half) {
+    if (half == 0) parallel_inplace_merge(first, a_cut, split, less, parts / 2);
+    else parallel_inplace_merge(split, split + (middle - a_cut), last, less, parts - parts / 2);
+  });
+}
+
 // Sorts [first, last) by `less` on `threads` threads: runs sorted in parallel,
 // then merged pairwise (the pairs of a round in parallel). For a strict total
 // order (no two elements equivalent) the result is std::sort's, for every thread
@@ -88,10 +114,13 @@ void parallel_sort(It first, It last, Less less, int threads) {
   }
   auto bound = [&](int k) { return first + n * k / runs; };
   parallel_for(runs, threads, [&](int k) { std::sort(bound(k), bound(k + 1), less); });
-  for (int width = 1; width < runs; width *= 2)
-    parallel_for(runs / (2 * width), threads, [&](int p) {
-      std::inplace_merge(bound(2 * p * width), bound((2 * p + 1) * width), bound((2 * p + 2) * width), less);
+  for (int width = 1; width < runs; width *= 2) {
+    const int pairs = runs / (2 * width);
+    parallel_for(pairs, threads, [&](int p) {
+      parallel_inplace_merge(bound(2 * p * width), bound((2 * p + 1) * width), bound((2 * p + 2) * width), less,
+                             std::max(1, threads / pairs));
     });
+  }
 }
 
 // [begin, end) of chunk k when n items are cut into chunks of `size`.

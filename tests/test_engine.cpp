@@ -4,17 +4,21 @@
 // only (the map does not depend on c), and runs are reproducible byte for byte.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "arrangements/json_writer.h"
 #include "bench/scene_gen.h"
+#include "engine/parallel.h"
 #include "engine/visibility.h"
 #include "tests/test_support.h"
 
@@ -202,6 +206,38 @@ TEST(Threads, SameMapForEveryThreadCount) {
         opt.threads = threads;
         EXPECT_EQ(json_of(*views[v].scene, view, opt), reference)
             << "view " << v << (regions ? "" : ", lines only") << ": " << threads << " threads differ from one";
+      }
+    }
+  }
+}
+
+// The parallel sort gives std::sort's order for a strict total order on every
+// thread count, and its merge (split across threads) keeps std::inplace_merge's
+// stability: of equal keys, the first run's come first, each run's in order.
+TEST(Threads, ParallelSortAndMergeAsTheSerialOnes) {
+  std::mt19937 rng(11);
+  for (const int n : {1000, 20000, 100003}) {
+    std::vector<std::pair<int, int>> items(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) items[static_cast<std::size_t>(i)] = {static_cast<int>(rng() % 97), i};
+    auto sorted = items;
+    std::sort(sorted.begin(), sorted.end());
+    for (const int threads : {1, 2, 3, 4, 8}) {
+      auto mine = items;
+      vismap::engine::parallel_sort(mine.begin(), mine.end(), std::less<>(), threads);
+      EXPECT_TRUE(mine == sorted) << n << " items, " << threads << " threads";
+    }
+    // Two sorted runs of unequal length, merged on the key alone.
+    for (const int cut : {n / 3, n / 2, n - n / 5}) {
+      auto runs = items;
+      auto by_key = [](const auto& a, const auto& b) { return a.first < b.first; };
+      std::stable_sort(runs.begin(), runs.begin() + cut, by_key);
+      std::stable_sort(runs.begin() + cut, runs.end(), by_key);
+      auto serial = runs;
+      std::inplace_merge(serial.begin(), serial.begin() + cut, serial.end(), by_key);
+      for (const int parts : {2, 3, 4, 16}) {
+        auto mine = runs;
+        vismap::engine::parallel_inplace_merge(mine.begin(), mine.begin() + cut, mine.end(), by_key, parts);
+        EXPECT_TRUE(mine == serial) << n << " items cut at " << cut << ", " << parts << " parts";
       }
     }
   }
