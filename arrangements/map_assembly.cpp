@@ -55,12 +55,14 @@ std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph
     int at;       // 2 * piece + (0: a, 1: b)
   };
   auto point = [&](const End& e) -> const P2& { return e.at % 2 == 0 ? pieces[e.at / 2].a : pieces[e.at / 2].b; };
-  std::vector<End> ends;
-  ends.reserve(2 * pieces.size());
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    ends.push_back(End{approx_point(pieces[i].a).x(), static_cast<int>(2 * i)});
-    ends.push_back(End{approx_point(pieces[i].b).x(), static_cast<int>(2 * i + 1)});
-  }
+  const int npieces = static_cast<int>(pieces.size());
+  std::vector<End> ends(2 * pieces.size());
+  engine::parallel_chunks(npieces, 16384, threads, [&](int, engine::Chunk r) {
+    for (int i = r.begin; i < r.end; ++i) {
+      ends[2 * i] = End{approx_point(pieces[i].a).x(), 2 * i};
+      ends[2 * i + 1] = End{approx_point(pieces[i].b).x(), 2 * i + 1};
+    }
+  });
   auto compare = [&](const End& a, const End& b) {
     if (a.x.sup() < b.x.inf()) return CGAL::SMALLER;
     if (b.x.sup() < a.x.inf()) return CGAL::LARGER;
@@ -82,17 +84,36 @@ std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph
     return c == CGAL::SMALLER || (c == CGAL::EQUAL && a.at < b.at);
   }, threads);
   filter_counts = before_sort;
-  // Where a new point starts (comparisons in parallel), then the points in order.
-  const int n = static_cast<int>(ends.size());
+  // Chunks of the sorted ends in parallel: where a new point starts, how many
+  // each chunk has; then each chunk's points, numbered from its first.
+  const int n = static_cast<int>(ends.size()), size = 16384, chunks = engine::chunk_count(n, size);
   std::vector<char> starts(ends.size());
-  engine::parallel_chunks(n, 16384, threads, [&](int, engine::Chunk r) {
-    for (int k = r.begin; k < r.end; ++k) starts[k] = k == 0 || compare(ends[k - 1], ends[k]) != CGAL::EQUAL;
+  std::vector<int> first(static_cast<std::size_t>(chunks) + 1, 0);
+  engine::parallel_chunks(n, size, threads, [&](int c, engine::Chunk r) {
+    int count = 0;
+    for (int k = r.begin; k < r.end; ++k) count += starts[k] = k == 0 || compare(ends[k - 1], ends[k]) != CGAL::EQUAL;
+    first[c + 1] = count;
   });
+  std::partial_sum(first.begin(), first.end(), first.begin());
   std::vector<int> vertex_of(ends.size());
-  for (std::size_t k = 0; k < ends.size(); ++k) {
-    if (starts[k]) g.add_point(point(ends[k]));
-    vertex_of[ends[k].at] = static_cast<int>(g.points.size()) - 1;
-  }
+  std::vector<std::vector<P2>> points(static_cast<std::size_t>(chunks));
+  engine::parallel_chunks(n, size, threads, [&](int c, engine::Chunk r) {
+    int w = first[c] - 1;
+    for (int k = r.begin; k < r.end; ++k) {
+      if (starts[k]) {
+        points[c].push_back(point(ends[k]));
+        ++w;
+      }
+      vertex_of[ends[k].at] = w;
+    }
+  });
+  g.points.reserve(static_cast<std::size_t>(first.back()));
+  g.approx.reserve(static_cast<std::size_t>(first.back()));
+  for (std::vector<P2>& chunk : points)
+    for (P2& p : chunk) {
+      g.approx.push_back(p.approx());
+      g.points.push_back(std::move(p));
+    }
   return vertex_of;
 }
 
