@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "arrangements/rational.h"
+#include "engine/parallel.h"
 
 namespace vismap {
 namespace {
@@ -41,13 +42,13 @@ void ring(std::string& out, const Ring& r, const std::vector<std::string>& text)
 
 }  // namespace
 
-std::string to_json(const VisibilityMap& map) {
+std::string to_json(const VisibilityMap& map, int threads) {
   std::string all;
-  write_json(map, [&](const std::string& piece) { all += piece; });
+  write_json(map, [&](const std::string& piece) { all += piece; }, threads);
   return all;
 }
 
-void write_json(const VisibilityMap& map, const std::function<void(const std::string&)>& sink) {
+void write_json(const VisibilityMap& map, const std::function<void(const std::string&)>& sink, int threads) {
   std::string out;
   constexpr std::size_t kPiece = std::size_t{4} << 20;
   auto pass_on = [&] {   // hands over what has piled up, if it is a whole piece
@@ -68,9 +69,12 @@ void write_json(const VisibilityMap& map, const std::function<void(const std::st
     }
     out += ']';
   }
-  // Each vertex's text once: most appear in several rings and segments.
+  // Each vertex's text once: most appear in several rings and segments. (Exact
+  // decimals of rationals, the costliest part: chunks on `threads` threads.)
   std::vector<std::string> text(map.vertices.size());
-  for (std::size_t v = 0; v < map.vertices.size(); ++v) point(text[v], map.vertices[v]);
+  engine::parallel_chunks(static_cast<int>(text.size()), 4096, threads, [&](int, engine::Chunk r) {
+    for (int v = r.begin; v < r.end; ++v) point(text[v], map.vertices[v]);
+  });
   out.reserve(2 * kPiece);
   out += "],\n";
   if (map.has_regions) out += "\"regions\":[";

@@ -45,9 +45,9 @@ engine:
   --algorithm A        franklin (default: Franklin's variable grid) or newell
                        (Newell, Newell & Sancha's depth sort with plane
                        splitting); both give the same map
-  --threads N          threads for Franklin's engine (default: every usable core,
-                       one for scenes under 8192 faces); the map is the same
-                       for every N
+  --threads N          threads for Franklin's engine and the JSON (default:
+                       every usable core, one for scenes under 8192 faces);
+                       the map is the same for every N
   --grid-c C           Franklin's grid constant c, B = c*min(sqrt(N),1/L) (default 4)
   --painter FILE       with --algorithm newell: SVG of the ordered, split
                        fragments filled back to front (the painter's drawing)
@@ -196,12 +196,13 @@ int main(int argc, char** argv) {
     // map's is about a GB), then all renamed together: a failure leaves no
     // half-written output.
     std::vector<vismap::StreamedOutput> outputs;
-    if (!json_path.empty()) outputs.push_back({json_path, [&](const auto& write) { vismap::write_json(map, write); }});
+    const int threads = vismap::engine::thread_count(eng.threads, scene.faces.size());
+    if (!json_path.empty()) outputs.push_back({json_path, [&](const auto& write) { vismap::write_json(map, write, threads); }});
     if (!svg_path.empty()) outputs.push_back({svg_path, [&](const auto& write) { write(vismap::to_svg(map, scene, view, svg)); }});
     if (!painter_path.empty())
       outputs.push_back({painter_path, [&](const auto& write) { write(vismap::to_painter_svg(fragments, map, scene, view, svg)); }});
     // All or none; on several threads, the files are written while the rest is formatted.
-    vismap::write_outputs_atomically(outputs, vismap::engine::thread_count(eng.threads, scene.faces.size()) > 1);
+    vismap::write_outputs_atomically(outputs, threads > 1);
     if (json_path.empty() && svg_path.empty() && painter_path.empty())
       std::fprintf(stderr, "vismap: %s: %zu regions, %zu segments (no output asked for: use -o or --json)\n",
                    scene_path.c_str(), map.regions.size(), map.segments.size());
