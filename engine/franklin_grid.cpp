@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <optional>
 #include <type_traits>
 
 #include "engine/convex_inside.h"
@@ -189,26 +190,38 @@ const CGAL::Bbox_2& curve_box(const ScreenScene& ss, std::size_t i) {
   return i < ss.curves.size() ? ss.curves[i].box : ss.latent_box[i - ss.curves.size()];
 }
 
-// The depth complexity: the occluders' projected area over the screen's, both
-// in the grid's own coordinates (doubles: it only sizes the grid). Each facet's
-// area is scaled by how its bounding box is stretched there.
-double depth_complexity(const ScreenScene& ss, const Axis& X, const Axis& Y) {
-  double area = 0;
-  for (const Facet& f : ss.facets) {
-    if (!f.occluder) continue;
-    const std::size_t n = f.v.size();
-    double a = 0;
-    for (std::size_t k = 0; k < n; ++k) {
-      const P3 &p = f.v[k], &q = f.v[(k + 1) % n];
-      a += CGAL::to_double(approx_of(p.x)) * CGAL::to_double(approx_of(q.y)) -
-           CGAL::to_double(approx_of(q.x)) * CGAL::to_double(approx_of(p.y));
-    }
-    const double w = f.box.xmax() - f.box.xmin(), h = f.box.ymax() - f.box.ymin();
-    if (!(w > 0 && h > 0)) continue;
-    const double sx = (warped(X, f.box.xmax()) - warped(X, f.box.xmin())) / w;
-    const double sy = (warped(Y, f.box.ymax()) - warped(Y, f.box.ymin())) / h;
-    area += std::abs(a) / 2 * sx * sy;
+// A facet's share of the depth complexity: its projected area in the grid's own
+// coordinates (doubles: it only sizes the grid), scaled by how its bounding box
+// is stretched there; 0 for a facet that hides nothing.
+double facet_area(const Facet& f, const Axis& X, const Axis& Y) {
+  if (!f.occluder) return 0;
+  const std::size_t n = f.v.size();
+  double a = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const P3 &p = f.v[k], &q = f.v[(k + 1) % n];
+    a += CGAL::to_double(approx_of(p.x)) * CGAL::to_double(approx_of(q.y)) -
+         CGAL::to_double(approx_of(q.x)) * CGAL::to_double(approx_of(p.y));
   }
+  const double w = f.box.xmax() - f.box.xmin(), h = f.box.ymax() - f.box.ymin();
+  if (!(w > 0 && h > 0)) return 0;
+  const double sx = (warped(X, f.box.xmax()) - warped(X, f.box.xmin())) / w;
+  const double sy = (warped(Y, f.box.ymax()) - warped(Y, f.box.ymin())) / h;
+  return std::abs(a) / 2 * sx * sy;
+}
+
+// The depth complexity: the occluders' projected area over the screen's, both
+// in the grid's own coordinates. Chunks of facets in parallel, their sums added
+// in chunk order: the same for every thread count.
+double depth_complexity(const ScreenScene& ss, const Axis& X, const Axis& Y, int threads) {
+  const int n = static_cast<int>(ss.facets.size()), size = 8192;
+  std::vector<double> part(static_cast<std::size_t>(chunk_count(n, size)), 0);
+  parallel_chunks(n, size, threads, [&](int c, Chunk r) {
+    double sum = 0;
+    for (int i = r.begin; i < r.end; ++i) sum += facet_area(ss.facets[i], X, Y);
+    part[static_cast<std::size_t>(c)] = sum;
+  });
+  double area = 0;
+  for (double a : part) area += a;
   return std::isfinite(area) ? area : 5;
 }
 
@@ -299,15 +312,29 @@ int Axis::index(double v) const {
 // end points instead, so that the cells follow the drawing where projected sizes
 // vary (a close-up in perspective: near faces thousands of times larger than far
 // ones), and N, L and the depth complexity are measured in those coordinates.
-Grid make_grid(const ScreenScene& ss, double c, Stats& stats) {
+Grid make_grid(const ScreenScene& ss, double c, int threads, Stats& stats) {
+  // The box of the curves and occluders (chunks of each in parallel).
+  const int ncurves = static_cast<int>(curve_count(ss)), nfacets = static_cast<int>(ss.facets.size());
+  const int size = 16384, curve_chunks = chunk_count(ncurves, size);
+  std::vector<std::optional<CGAL::Bbox_2>> boxes(static_cast<std::size_t>(curve_chunks + chunk_count(nfacets, size)));
+  parallel_for(static_cast<int>(boxes.size()), threads, [&](int k) {
+    std::optional<CGAL::Bbox_2>& b = boxes[static_cast<std::size_t>(k)];
+    auto add = [&](const CGAL::Bbox_2& x) { b = b ? *b + x : x; };
+    if (k < curve_chunks) {
+      for (int i = k * size; i < std::min(ncurves, (k + 1) * size); ++i) add(curve_box(ss, static_cast<std::size_t>(i)));
+    } else {
+      const Chunk r = chunk(k - curve_chunks, nfacets, size);
+      for (int i = r.begin; i < r.end; ++i)
+        if (ss.facets[i].occluder) add(ss.facets[i].box);
+    }
+  });
   CGAL::Bbox_2 box;
   bool any = false;
-  for (std::size_t i = 0; i < curve_count(ss); ++i) {
-    box = any ? box + curve_box(ss, i) : curve_box(ss, i);
-    any = true;
-  }
-  for (const Facet& f : ss.facets)
-    if (f.occluder) { box = any ? box + f.box : f.box; any = true; }
+  for (const auto& b : boxes)
+    if (b) {
+      box = any ? box + *b : *b;
+      any = true;
+    }
   if (!any) box = CGAL::Bbox_2(0, 0, 1, 1);
   Grid g;
   const double n = static_cast<double>(curve_count(ss));
@@ -316,8 +343,9 @@ Grid make_grid(const ScreenScene& ss, double c, Stats& stats) {
   if (sized) {
     // The grid's coordinates, from the finest grid the rule allows.
     const int finest = static_cast<int>(std::clamp(4 * std::sqrt(n), 1.0, 4096.0));
-    xs = end_coordinates(ss, true, 32 * static_cast<std::size_t>(finest));
-    ys = end_coordinates(ss, false, 32 * static_cast<std::size_t>(finest));
+    parallel_for(2, threads, [&](int y) {
+      (y ? ys : xs) = end_coordinates(ss, !y, 32 * static_cast<std::size_t>(finest));
+    });
     const Axis X(quantile_bounds(xs, finest, box.xmin(), box.xmax()));
     const Axis Y(quantile_bounds(ys, finest, box.ymin(), box.ymax()));
     const double L = mean_length(ss, X, Y);   // mean curve length on a unit screen
@@ -326,7 +354,7 @@ Grid make_grid(const ScreenScene& ss, double c, Stats& stats) {
     // do: a mesh seen from outside, a terrain. c is scaled by sqrt(D / 5), within
     // [1/4, 1], D the depth complexity (measured: c = 4 is best at D = 5-10 on
     // random squares, c = 1-2 on meshes, where D is about 1).
-    const double D = depth_complexity(ss, X, Y);
+    const double D = depth_complexity(ss, X, Y, threads);
     c *= std::clamp(std::sqrt(D / 5), 0.25, 1.0);
     stats.count("depth_complexity_percent", static_cast<std::int64_t>(std::min(D, 1e9) * 100));
     const double b = c * std::min(std::sqrt(n), L > 0 ? 1 / L : std::sqrt(n));

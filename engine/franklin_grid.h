@@ -50,7 +50,7 @@ struct VisiblePiece {
   bool boundary = false;        // this curve bounds a region here
 };
 
-Grid make_grid(const ScreenScene& ss, double c, Stats& stats);                    // steps 2-4
+Grid make_grid(const ScreenScene& ss, double c, int threads, Stats& stats);       // steps 2-4
 void bucket_facets(Grid& g, ScreenScene& ss, int threads, Stats& stats);                       // step 5
 void prune_facets(Grid& g, const ScreenScene& ss, int threads, Stats& stats);                  // step 6
 void add_intersection_lines(const Grid& g, ScreenScene& ss, int threads, Stats& stats);   // faces piercing each other
