@@ -4,12 +4,14 @@
 #include <cmath>
 #include <numeric>
 
+#include "engine/parallel.h"
 #include "engine/union_find.h"
 #include "engine/world_exact.h"
 
 namespace vismap::engine {
 
-ClosedComponents closed_components(const Scene& scene, const WorldFacets& wf, const std::vector<WorldPiece>& pieces) {
+ClosedComponents closed_components(const Scene& scene, const WorldFacets& wf, const std::vector<WorldPiece>& pieces,
+                                   int threads) {
   const int n = static_cast<int>(wf.facets.size());
   UnionFind uf(static_cast<std::size_t>(n));
   // A piece closes the surface when exactly two facets share it, traversing it in
@@ -20,73 +22,89 @@ ClosedComponents closed_components(const Scene& scene, const WorldFacets& wf, co
     good[i] = s.size() == 2 && s[0].forward != s[1].forward;
     for (std::size_t k = 1; k < s.size(); ++k) uf.join(s[0].facet, s[k].facet);
   }
+  // Each facet's component, once (the loops below read it on several threads).
+  std::vector<int> comp(static_cast<std::size_t>(n));
+  for (int f = 0; f < n; ++f) comp[f] = uf.find(f);
   std::vector<char> closed(n, 1);
   for (std::size_t i = 0; i < pieces.size(); ++i)
-    if (!good[i]) for (const auto& s : pieces[i].sharers) closed[uf.find(s.facet)] = 0;
+    if (!good[i]) for (const auto& s : pieces[i].sharers) closed[comp[s.facet]] = 0;
   // A non-planar polygon's fan can fold over the polygon's own edge, and a face
   // never hides its own edges (spec: "some face g not sharing e"): an edge between
   // two back-facing pieces may then be visible. Such components are not culled.
   for (int f = 0; f < n; ++f)
-    if (!wf.facets[f].planar) closed[uf.find(f)] = 0;
+    if (!wf.facets[f].planar) closed[comp[f]] = 0;
 
-  std::vector<Vec3> lo(n, Vec3{HUGE_VAL, HUGE_VAL, HUGE_VAL}), hi(n, Vec3{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL});
+  // Each closed component's origin: the first corner of its first facet.
   std::vector<Vec3> origin(n);
   std::vector<char> has_origin(n, 0);
   for (int f = 0; f < n; ++f) {
-    int c = uf.find(f);
-    if (!closed[c]) continue;
-    for (auto id : wf.facets[f].v) {
-      const Vec3& p = scene.vertices[id];
-      lo[c] = {std::min(lo[c].x, p.x), std::min(lo[c].y, p.y), std::min(lo[c].z, p.z)};
-      hi[c] = {std::max(hi[c].x, p.x), std::max(hi[c].y, p.y), std::max(hi[c].z, p.z)};
-      if (!has_origin[c]) { origin[c] = p; has_origin[c] = 1; }
+    const int c = comp[f];
+    if (closed[c] && !has_origin[c]) {
+      origin[c] = scene.vertices[wf.facets[f].v[0]];
+      has_origin[c] = 1;
     }
   }
-
   // Orientation of each closed component: the sign of its signed volume, a sum
-  // of tetrahedra from one of its corners. Intervals settle it unless the
-  // volume is (nearly) zero; then it is summed exactly.
+  // of tetrahedra from its origin. Each facet's share (and its farthest
+  // coordinate) in parallel chunks, summed per component in facet order.
+  // Intervals settle the sign unless the volume is (nearly) zero; then it is
+  // summed exactly.
   using Interval = CGAL::Interval_nt<false>;
-  std::vector<Interval> volume(n, Interval(0));
-  {
+  std::vector<Interval> share(static_cast<std::size_t>(n), Interval(0));
+  std::vector<double> reach(static_cast<std::size_t>(n), 0);
+  parallel_chunks(n, 8192, threads, [&](int, Chunk r) {
     CGAL::Protect_FPU_rounding<true> upward;
-    for (int f = 0; f < n; ++f) {
-      const int c = uf.find(f);
+    for (int f = r.begin; f < r.end; ++f) {
+      const int c = comp[f];
       if (!closed[c]) continue;
       const auto& v = wf.facets[f].v;
       for (std::size_t k = 1; k + 1 < v.size(); ++k)
-        volume[c] += world::det<Interval>(origin[c], scene.vertices[v[0]], scene.vertices[v[k]], scene.vertices[v[k + 1]]);
+        share[f] += world::det<Interval>(origin[c], scene.vertices[v[0]], scene.vertices[v[k]], scene.vertices[v[k + 1]]);
+      for (auto id : v) {
+        const Vec3& p = scene.vertices[id];
+        reach[f] = std::max({reach[f], -p.x, -p.y, -p.z, p.x, p.y, p.z});
+      }
+    }
+  });
+  std::vector<Interval> volume(n, Interval(0));
+  std::vector<double> far(n, 0);
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    for (int f = 0; f < n; ++f) {
+      const int c = comp[f];
+      if (!closed[c]) continue;
+      volume[c] += share[f];
+      far[c] = std::max(far[c], reach[f]);
     }
   }
   std::vector<std::int8_t> sign(n, 0);
   std::vector<CGAL::Mpzf> exact;
   for (int c = 0; c < n; ++c) {
-    if (!closed[c] || uf.find(c) != c) continue;
+    if (!closed[c] || comp[c] != c) continue;
     // Beyond 2^300 a product of three differences may overflow, and an interval
     // with an infinite bound is not to be trusted (inf * 0 is NaN, which a max
     // can drop): such a component is summed exactly.
-    const double far = std::max({-lo[c].x, -lo[c].y, -lo[c].z, hi[c].x, hi[c].y, hi[c].z});
-    if (!(far <= 0x1p300)) volume[c] = Interval(-1, 1);
+    if (!(far[c] <= 0x1p300)) volume[c] = Interval(-1, 1);
     if (volume[c].inf() > 0) sign[c] = 1;
     else if (volume[c].sup() < 0) sign[c] = -1;
     else if (exact.empty()) exact.resize(n);   // (then summed below)
   }
   if (!exact.empty()) {
     for (int f = 0; f < n; ++f) {
-      const int c = uf.find(f);
+      const int c = comp[f];
       if (!closed[c] || sign[c] != 0) continue;
       const auto& v = wf.facets[f].v;
       for (std::size_t k = 1; k + 1 < v.size(); ++k)
         exact[c] = exact[c] + world::det<CGAL::Mpzf>(origin[c], scene.vertices[v[0]], scene.vertices[v[k]], scene.vertices[v[k + 1]]);
     }
     for (int c = 0; c < n; ++c)
-      if (closed[c] && uf.find(c) == c && sign[c] == 0) sign[c] = static_cast<std::int8_t>(exact[c].sign());
+      if (closed[c] && comp[c] == c && sign[c] == 0) sign[c] = static_cast<std::int8_t>(exact[c].sign());
   }
   ClosedComponents cc;
-  cc.component.resize(n);
+  cc.component = std::move(comp);
   cc.side.assign(n, 0);
   for (int f = 0; f < n; ++f) {
-    const int c = cc.component[f] = uf.find(f);
+    const int c = cc.component[f];
     if (closed[c]) cc.side[f] = sign[c];
   }
   return cc;

@@ -28,7 +28,8 @@ struct ClosedComponents {
   // hidden), 0 = nothing can be said.
   std::vector<std::int8_t> side;
 };
-ClosedComponents closed_components(const Scene& scene, const WorldFacets& wf, const std::vector<WorldPiece>& pieces);
+ClosedComponents closed_components(const Scene& scene, const WorldFacets& wf, const std::vector<WorldPiece>& pieces,
+                                   int threads = 1);
 
 // A box containing the screen image of one connected curve of the near plane's
 // cut through a closed component, and so of the caps it bounds.

@@ -544,7 +544,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   // Back faces of closed components hide nothing that their component's front
   // faces do not already hide, unless seen through a cap of the near plane's cut
   // (engine/culling.h).
-  const ClosedComponents cc = closed_components(scene, wf, pieces);
+  const ClosedComponents cc = closed_components(scene, wf, pieces, threads);
   std::vector<NearCap> caps;
   if (view.perspective) {
     NearPlane np;
