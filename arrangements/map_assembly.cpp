@@ -98,14 +98,16 @@ std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph
   std::vector<int> vertex_of(ends.size());
   std::vector<std::vector<P2>> points(static_cast<std::size_t>(chunks));
   engine::parallel_chunks(n, size, threads, [&](int c, engine::Chunk r) {
+    std::vector<P2> mine;   // (filled here, stored once: the chunks' slots share cache lines)
     int w = first[c] - 1;
     for (int k = r.begin; k < r.end; ++k) {
       if (starts[k]) {
-        points[c].push_back(point(ends[k]));
+        mine.push_back(point(ends[k]));
         ++w;
       }
       vertex_of[ends[k].at] = w;
     }
+    points[c] = std::move(mine);
   });
   g.points.reserve(static_cast<std::size_t>(first.back()));
   g.approx.reserve(static_cast<std::size_t>(first.back()));

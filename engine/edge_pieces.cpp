@@ -267,8 +267,10 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
   parallel_for(static_cast<int>(nchunks), threads, [&](int c) {
     Scratch w;
     const auto k = static_cast<std::size_t>(c);
-    found[k].reserve((cut[k + 1] - cut[k]) * 3 / 5);
-    pieces_of_runs(cut[k], cut[k + 1], w, found[k]);
+    std::vector<WorldPiece> mine;   // (filled here, stored once: the chunks' slots share cache lines)
+    mine.reserve((cut[k + 1] - cut[k]) * 3 / 5);
+    pieces_of_runs(cut[k], cut[k + 1], w, mine);
+    found[k] = std::move(mine);
   });
   // In facet order (of each piece's first sharer; stable): the stages that read
   // the pieces then walk the facets and vertices in order. Each piece's place,

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iterator>
 #include <optional>
+#include <span>
 #include <type_traits>
 
 #include "engine/convex_inside.h"
@@ -318,7 +319,7 @@ Grid make_grid(const ScreenScene& ss, double c, int threads, Stats& stats) {
   const int size = 16384, curve_chunks = chunk_count(ncurves, size);
   std::vector<std::optional<CGAL::Bbox_2>> boxes(static_cast<std::size_t>(curve_chunks + chunk_count(nfacets, size)));
   parallel_for(static_cast<int>(boxes.size()), threads, [&](int k) {
-    std::optional<CGAL::Bbox_2>& b = boxes[static_cast<std::size_t>(k)];
+    std::optional<CGAL::Bbox_2> b;   // (stored once, below)
     auto add = [&](const CGAL::Bbox_2& x) { b = b ? *b + x : x; };
     if (k < curve_chunks) {
       for (int i = k * size; i < std::min(ncurves, (k + 1) * size); ++i) add(curve_box(ss, static_cast<std::size_t>(i)));
@@ -327,6 +328,7 @@ Grid make_grid(const ScreenScene& ss, double c, int threads, Stats& stats) {
       for (int i = r.begin; i < r.end; ++i)
         if (ss.facets[i].occluder) add(ss.facets[i].box);
     }
+    boxes[static_cast<std::size_t>(k)] = b;
   });
   CGAL::Bbox_2 box;
   bool any = false;
@@ -373,17 +375,55 @@ Grid make_grid(const ScreenScene& ss, double c, int threads, Stats& stats) {
 namespace {
 
 // The items (facets or curves, by index, in index order) whose box reaches each
-// row of cells. The rows then fill their cells in parallel: a cell sees its
-// items in index order, as one pass over the items in order would give them.
+// row of cells, side by side: row r's are items[first[r] .. first[r + 1]). The
+// rows then fill their cells in parallel: a cell sees its items in index order,
+// as one pass over the items in order would give them.
+struct ItemsByRow {
+  std::vector<std::size_t> first;
+  std::vector<int> items;
+  std::size_t size() const { return first.size() - 1; }
+  std::span<const int> operator[](std::size_t r) const { return {items.data() + first[r], first[r + 1] - first[r]}; }
+};
+
+// Chunks of items in parallel: each item's rows and each chunk's count per row;
+// then each chunk writes its items at its place in every row.
 template <class BoxOf>
-std::vector<std::vector<int>> items_by_row(const Grid& g, int n, BoxOf&& box_of) {
-  std::vector<std::vector<int>> rows(static_cast<std::size_t>(g.Y.cells()));
-  for (int i = 0; i < n; ++i) {
-    const CGAL::Bbox_2* b = box_of(i);
-    if (!b) continue;
-    const int y0 = g.Y.index(b->ymin()), y1 = g.Y.index(b->ymax());
-    for (int iy = y0; iy <= y1; ++iy) rows[static_cast<std::size_t>(iy)].push_back(i);
+ItemsByRow items_by_row(const Grid& g, int n, int threads, BoxOf&& box_of) {
+  const int nrows = g.Y.cells(), size = 16384, chunks = chunk_count(n, size);
+  std::vector<std::array<int, 2>> span(static_cast<std::size_t>(n));   // rows y0 .. y1 (y0 > y1: none)
+  std::vector<std::vector<std::size_t>> at(static_cast<std::size_t>(chunks));   // per chunk and row: count, then place
+  parallel_chunks(n, size, threads, [&](int c, Chunk r) {
+    std::vector<std::size_t>& count = at[static_cast<std::size_t>(c)];
+    count.assign(static_cast<std::size_t>(nrows), 0);
+    for (int i = r.begin; i < r.end; ++i) {
+      const CGAL::Bbox_2* b = box_of(i);
+      auto& [y0, y1] = span[static_cast<std::size_t>(i)];
+      if (!b) { y0 = 1; y1 = 0; continue; }
+      y0 = g.Y.index(b->ymin());
+      y1 = g.Y.index(b->ymax());
+      for (int iy = y0; iy <= y1; ++iy) ++count[static_cast<std::size_t>(iy)];
+    }
+  });
+  ItemsByRow rows;
+  rows.first.assign(static_cast<std::size_t>(nrows) + 1, 0);
+  std::size_t total = 0;
+  for (std::size_t r = 0; r < static_cast<std::size_t>(nrows); ++r) {
+    rows.first[r] = total;
+    for (std::vector<std::size_t>& count : at) {
+      const std::size_t k = count[r];
+      count[r] = total;
+      total += k;
+    }
   }
+  rows.first[static_cast<std::size_t>(nrows)] = total;
+  rows.items.resize(total);
+  parallel_chunks(n, size, threads, [&](int c, Chunk r) {
+    std::vector<std::size_t>& place = at[static_cast<std::size_t>(c)];
+    for (int i = r.begin; i < r.end; ++i) {
+      const auto [y0, y1] = span[static_cast<std::size_t>(i)];
+      for (int iy = y0; iy <= y1; ++iy) rows.items[place[static_cast<std::size_t>(iy)]++] = i;
+    }
+  });
   return rows;
 }
 
@@ -431,20 +471,24 @@ bool bucket_facet(Grid& g, const ScreenScene& ss, int fi, int ix, int iy, std::i
 // Rows of cells in parallel.
 void bucket_facets(Grid& g, ScreenScene& ss, int threads, Stats& stats) {
   const int nf = static_cast<int>(ss.facets.size());
-  auto rows = items_by_row(g, nf, [&](int fi) { return ss.facets[fi].occluder ? &ss.facets[fi].box : nullptr; });
+  const ItemsByRow rows =
+      items_by_row(g, nf, threads, [&](int fi) { return ss.facets[fi].occluder ? &ss.facets[fi].box : nullptr; });
   std::vector<std::vector<int>> kept_by_row(rows.size());
   std::vector<std::array<std::int64_t, 2>> counts(rows.size());   // skipped, blockers
   parallel_for(g.Y.cells(), threads, [&](int iy) {
     UpwardRounding upward;   // the corner tests are our own filtered predicates
     const auto row = static_cast<std::size_t>(iy);
+    std::int64_t skipped = 0, blockers = 0;   // (counted here, stored once: rows side by side share cache lines)
+    std::vector<int> kept_here;
     for (int fi : rows[row]) {
       const CGAL::Bbox_2& box = ss.facets[fi].box;
       bool kept = false;
       for (int ix = g.X.index(box.xmin()), x1 = g.X.index(box.xmax()); ix <= x1; ++ix)
-        kept |= bucket_facet(g, ss, fi, ix, iy, counts[row][0], counts[row][1]);
-      if (kept) kept_by_row[row].push_back(fi);
+        kept |= bucket_facet(g, ss, fi, ix, iy, skipped, blockers);
+      if (kept) kept_here.push_back(fi);
     }
-    std::vector<int>().swap(rows[row]);
+    kept_by_row[row] = std::move(kept_here);
+    counts[row] = {skipped, blockers};
   });
   std::vector<char> kept(ss.facets.size(), 0);
   mark_kept(kept_by_row, kept);
@@ -468,6 +512,7 @@ void prune_facets(Grid& g, const ScreenScene& ss, int threads, Stats& stats) {
   std::vector<std::int64_t> pruned_by_row(static_cast<std::size_t>(g.Y.cells()), 0);
   parallel_for(g.Y.cells(), threads, [&](int iy) {
     UpwardRounding upward;
+    std::int64_t pruned = 0;   // (counted here, stored once: rows side by side share cache lines)
     for (int ix = 0; ix < g.X.cells(); ++ix) {
       Cell& cell = g.at(ix, iy);
       if (cell.blocker < 0) continue;
@@ -476,8 +521,9 @@ void prune_facets(Grid& g, const ScreenScene& ss, int threads, Stats& stats) {
       auto hidden = [&](int fi) { return fi == cell.blocker || behind_throughout(ss.facets[fi], b, c); };
       std::size_t before = cell.facets.size();
       cell.facets.erase(std::remove_if(cell.facets.begin(), cell.facets.end(), hidden), cell.facets.end());
-      pruned_by_row[static_cast<std::size_t>(iy)] += static_cast<std::int64_t>(before - cell.facets.size());
+      pruned += static_cast<std::int64_t>(before - cell.facets.size());
     }
+    pruned_by_row[static_cast<std::size_t>(iy)] = pruned;
   });
   std::int64_t pruned = 0;
   for (std::int64_t p : pruned_by_row) pruned += p;
@@ -739,8 +785,11 @@ void add_intersection_lines(const Grid& g, ScreenScene& ss, int threads, Stats& 
   std::vector<std::int64_t> tested_by_row(by_row.size(), 0);
   parallel_for(g.Y.cells(), threads, [&](int iy) {
     std::vector<Member> members;
-    const auto row = static_cast<std::size_t>(iy);
-    for (int ix = 0; ix < g.X.cells(); ++ix) crossings_in_cell(g, ss, l, ix, iy, members, by_row[row], tested_by_row[row]);
+    std::vector<Crossing> found;   // (filled here, stored once: rows side by side share cache lines)
+    std::int64_t tested = 0;
+    for (int ix = 0; ix < g.X.cells(); ++ix) crossings_in_cell(g, ss, l, ix, iy, members, found, tested);
+    by_row[static_cast<std::size_t>(iy)] = std::move(found);
+    tested_by_row[static_cast<std::size_t>(iy)] = tested;
   });
   std::vector<Crossing> found;
   std::int64_t tested = 0;
@@ -770,12 +819,14 @@ namespace {
 template <class Take, class Into>
 std::int64_t bucket(Grid& g, const ScreenScene& ss, int threads, Take&& take, Into&& into, std::int64_t& listed) {
   const int nc = static_cast<int>(ss.curves.size());
-  auto rows = items_by_row(g, nc, [&](int ci) { return take(ci) ? &ss.curves[ci].box : nullptr; });
+  const ItemsByRow rows = items_by_row(g, nc, threads, [&](int ci) { return take(ci) ? &ss.curves[ci].box : nullptr; });
   std::vector<std::vector<int>> kept_by_row(rows.size());
   std::vector<std::int64_t> listed_by_row(rows.size(), 0);
   parallel_for(g.Y.cells(), threads, [&](int iy) {
     UpwardRounding upward;   // meets_cell, curve_behind: our own filtered predicates
     const auto row = static_cast<std::size_t>(iy);
+    std::vector<int> kept_here;   // (filled here, stored once: rows side by side share cache lines)
+    std::int64_t listed_here = 0;
     for (int ci : rows[row]) {
       const Curve& cv = ss.curves[ci];
       const CellRange r = range_of(g, cv.box);
@@ -789,11 +840,12 @@ std::int64_t bucket(Grid& g, const ScreenScene& ss, int threads, Take&& take, In
         if (cell.blocker >= 0 && curve_behind(cv, ss.facets[cell.blocker], ss.world)) continue;
         cell.curves.push_back(ci);
         kept = true;
-        ++listed_by_row[row];
+        ++listed_here;
       }
-      if (kept) kept_by_row[row].push_back(ci);
+      if (kept) kept_here.push_back(ci);
     }
-    std::vector<int>().swap(rows[row]);
+    kept_by_row[row] = std::move(kept_here);
+    listed_by_row[row] = listed_here;
   });
   std::vector<char> kept(ss.curves.size(), 0);
   mark_kept(kept_by_row, kept);
@@ -1147,11 +1199,13 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
   auto each_cell = [&](auto&& visit) {
     std::vector<RowCuts> rows(static_cast<std::size_t>(g.Y.cells()));
     parallel_for(g.Y.cells(), threads, [&](int iy) {
-      Cutter cutter{g, ss, rows[static_cast<std::size_t>(iy)], 0, iy};
+      RowCuts found;   // (filled here, stored once: rows side by side share cache lines)
+      Cutter cutter{g, ss, found, 0, iy};
       for (int ix = 0; ix < g.X.cells(); ++ix) {
         cutter.ix = ix;
         visit(cutter, g.at(ix, iy));
       }
+      rows[static_cast<std::size_t>(iy)] = std::move(found);
     });
     for (RowCuts& row : rows) {
       for (auto& [c, p] : row.at) cuts.at(c).push_back(std::move(p));
@@ -1490,12 +1544,14 @@ PieceChunks classify_pieces(const Grid& g, const ScreenScene& ss, Cuts& cuts, in
   parallel_chunks(n, size, threads, [&](int k, Chunk r) {
     std::vector<Cover> covers;
     std::vector<P2> uncut;   // (the list of a curve cut nowhere)
+    Classified found;        // (filled here, stored once: chunks side by side share cache lines)
     for (int ci = r.begin; ci < r.end; ++ci) {
       if (!cuts.needed[static_cast<std::size_t>(ci)]) continue;
       std::vector<P2>* own = cuts.find(ci);
       if (!own) uncut.clear();
-      classify_curve(g, ss, ci, own ? *own : uncut, covers, chunks[static_cast<std::size_t>(k)]);
+      classify_curve(g, ss, ci, own ? *own : uncut, covers, found);
     }
+    chunks[static_cast<std::size_t>(k)] = std::move(found);
   });
   PieceChunks out(chunks.size());
   std::int64_t pieces = 0, visible = 0;

@@ -190,7 +190,7 @@ void order_on_screen(WorldFacets& wf, const Scene& scene, const View& view, int 
   const int size = 8192, chunks = chunk_count(static_cast<int>(n), size);
   std::vector<std::array<double, 4>> boxes(static_cast<std::size_t>(chunks), {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL});
   parallel_chunks(static_cast<int>(n), size, threads, [&](int c, Chunk part) {
-    auto& [x0, y0, x1, y1] = boxes[static_cast<std::size_t>(c)];
+    double x0 = HUGE_VAL, y0 = HUGE_VAL, x1 = -HUGE_VAL, y1 = -HUGE_VAL;   // (stored once, below)
     for (auto i = static_cast<std::size_t>(part.begin); i < static_cast<std::size_t>(part.end); ++i) {
       double sx = 0, sy = 0;
       for (auto id : wf.facets[i].v) {
@@ -209,6 +209,7 @@ void order_on_screen(WorldFacets& wf, const Scene& scene, const View& view, int 
         y1 = std::max(y1, centre[i][1]);
       }
     }
+    boxes[static_cast<std::size_t>(c)] = {x0, y0, x1, y1};
   });
   double x0 = HUGE_VAL, y0 = HUGE_VAL, x1 = -HUGE_VAL, y1 = -HUGE_VAL;
   for (const auto& b : boxes) {
@@ -446,7 +447,10 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   // facing and depth plane. What a chunk culled is counted in its slot.
   const int nf = static_cast<int>(wf.facets.size());
   const int facets_per_chunk = 512;
-  std::vector<std::array<std::int64_t, 2>> culled(static_cast<std::size_t>(chunk_count(nf, facets_per_chunk)));
+  struct alignas(64) Culled {   // (a cache line each: the chunks count side by side)
+    std::int64_t outside = 0, edge_on = 0;
+  };
+  std::vector<Culled> culled(static_cast<std::size_t>(chunk_count(nf, facets_per_chunk)));
   auto project_facet = [&](std::size_t fi, Facet& f, std::int64_t& outside, std::int64_t& edge_on) {
     const WorldFacet& w = wf.facets[fi];
     f.face = w.face;
@@ -534,9 +538,9 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     project_facet(static_cast<std::size_t>(fi), f, outside, edge_on);
   });
   std::int64_t outside = 0, edge_on = 0;
-  for (const auto& c : culled) {
-    outside += c[0];
-    edge_on += c[1];
+  for (const Culled& c : culled) {
+    outside += c.outside;
+    edge_on += c.edge_on;
   }
   stats.count("culled_outside_view", outside);
   stats.count("culled_edge_on", edge_on);
@@ -596,14 +600,20 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
       const int k = w + j;
       const Chunk r = chunk(k, np, size);
       std::deque<P3>& ends = ss.ends[first_ends + static_cast<std::size_t>(j)];
-      std::vector<Curve>& out = made[static_cast<std::size_t>(j)];
+      // (Filled here, stored once: the slots of chunks side by side share cache lines.)
+      std::vector<Curve> out;
+      std::vector<std::pair<int, CGAL::Bbox_2>> boxes;
+      std::array<std::int64_t, 3> count{};
       if (!latent) out.reserve(static_cast<std::size_t>(r.end - r.begin));
       Curve c;
       for (int i = r.begin; i < r.end; ++i) {
-        if (!M.make(ss.facets, pieces[static_cast<std::size_t>(i)], c, dropped[static_cast<std::size_t>(k)], ends)) continue;
-        if (latent && !c.drawn) left[static_cast<std::size_t>(j)].emplace_back(i, c.box);
+        if (!M.make(ss.facets, pieces[static_cast<std::size_t>(i)], c, count, ends)) continue;
+        if (latent && !c.drawn) boxes.emplace_back(i, c.box);
         else out.push_back(std::move(c));
       }
+      made[static_cast<std::size_t>(j)] = std::move(out);
+      left[static_cast<std::size_t>(j)] = std::move(boxes);
+      dropped[static_cast<std::size_t>(k)] = count;
     });
     for (std::vector<Curve>& m : made) std::move(m.begin(), m.end(), std::back_inserter(ss.curves));
     for (const auto& l : left)
@@ -654,11 +664,13 @@ void make_latent_curves(ScreenScene& ss, const std::vector<char>& wanted, int th
   parallel_chunks(n, size, threads, [&](int k, Chunk r) {
     std::array<std::int64_t, 3> dropped{};   // (counted when it was left latent)
     std::deque<P3>& ends = ss.ends[first_ends + static_cast<std::size_t>(k)];
+    std::vector<Curve> mine;   // (filled here, stored once: the chunks' slots share cache lines)
     for (int i = r.begin; i < r.end; ++i) {
       Curve c;
       if (ss.maker->make(ss.facets, ss.maker->pieces[static_cast<std::size_t>(pick[i])], c, dropped, ends))
-        made[static_cast<std::size_t>(k)].push_back(std::move(c));
+        mine.push_back(std::move(c));
     }
+    made[static_cast<std::size_t>(k)] = std::move(mine);
   });
   for (std::vector<Curve>& m : made) std::move(m.begin(), m.end(), std::back_inserter(ss.curves));
   std::vector<CGAL::Bbox_2>().swap(ss.latent_box);

@@ -258,9 +258,10 @@ WorldFacets make_world_facets(const Scene& scene, int threads) {
   const int nfaces = static_cast<int>(scene.faces.size()), size = 4096;
   std::vector<WorldFacets> chunks(static_cast<std::size_t>(chunk_count(nfaces, size)));
   parallel_chunks(nfaces, size, threads, [&](int k, Chunk r) {
-    WorldFacets& c = chunks[static_cast<std::size_t>(k)];
+    WorldFacets c;   // (filled here, stored once: the chunks' slots share cache lines)
     c.facets.reserve(static_cast<std::size_t>(r.end - r.begin));
     facets_of_faces(scene, canon, r, c);
+    chunks[static_cast<std::size_t>(k)] = std::move(c);
   });
   WorldFacets out;
   std::size_t total = 0;
