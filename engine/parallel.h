@@ -137,6 +137,18 @@ void parallel_chunks(int n, int size, int threads, Body&& body) {
   parallel_for(chunk_count(n, size), threads, [&](int k) { body(k, chunk(k, n, size)); });
 }
 
+// Frees v's items on `threads` threads, then v: each item is moved out and
+// destroyed on the thread that moved it (a moved-from kernel number holds
+// nothing, so what is left frees nothing). The objects lazy numbers point to are
+// then freed side by side, not one by one by the thread that ends the run.
+template <class T>
+void release(std::vector<T>& v, int threads) {
+  parallel_chunks(static_cast<int>(v.size()), 4096, threads, [&](int, Chunk r) {
+    for (int i = r.begin; i < r.end; ++i) T gone(std::move(v[static_cast<std::size_t>(i)]));
+  });
+  std::vector<T>().swap(v);
+}
+
 // A vector of n items made in parallel: make(k, i, item) fills item i (of chunk
 // k, chunks of `size`), each default-made on the thread that fills it; waves of
 // 64 chunks, each appended in order before the next, so that at most one wave is
