@@ -356,27 +356,36 @@ int face_below(const Assembly& a, const Columns& cols, int w) {
 // Edges: pieces from the smaller end, those on the same two vertices merged.
 void add_edges(std::vector<MapPiece>& pieces, MapGraph& g, int threads) {
   std::vector<int> vertex_of = number_end_points(pieces, g, threads);
-  g.ends.reserve(pieces.size());   // (at most one edge per piece: no doubling past the need)
-  g.attrs.reserve(pieces.size());
+  const int n = static_cast<int>(pieces.size()), size = 16384;
   std::vector<int> order(pieces.size());
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    MapPiece& m = pieces[i];
-    int &u = vertex_of[2 * i], &v = vertex_of[2 * i + 1];
-    if (u == v) broken("a piece of length zero");
-    if (v < u) { std::swap(m.a, m.b); std::swap(m.left, m.right); std::swap(u, v); }
-    order[i] = static_cast<int>(i);
-  }
+  engine::parallel_chunks(n, size, threads, [&](int, engine::Chunk r) {
+    for (int i = r.begin; i < r.end; ++i) {
+      MapPiece& m = pieces[i];
+      int &u = vertex_of[2 * i], &v = vertex_of[2 * i + 1];
+      if (u == v) broken("a piece of length zero");
+      if (v < u) { std::swap(m.a, m.b); std::swap(m.left, m.right); std::swap(u, v); }
+      order[i] = i;
+    }
+  });
   auto key = [&](int i) { return std::pair(vertex_of[2 * i], vertex_of[2 * i + 1]); };
   engine::parallel_sort(order.begin(), order.end(), [&](int i, int j) { return std::pair(key(i), i) < std::pair(key(j), j); },
                         threads);
-  for (std::size_t k = 0; k < order.size();) {
-    std::size_t l = k + 1;
-    while (l < order.size() && key(order[l]) == key(order[k])) ++l;
-    const auto [u, v] = key(order[k]);
-    g.ends.push_back({u, v});
-    g.attrs.push_back(edge_attr(pieces, &order[k], l - k, g.points[u], g.points[v]));
-    k = l;
-  }
+  // One edge per run of equal keys: where the runs start, then each edge (in chunks).
+  std::vector<int> starts;
+  for (int k = 0; k < n; ++k)
+    if (k == 0 || key(order[k]) != key(order[k - 1])) starts.push_back(k);
+  starts.push_back(n);
+  const int nedges = static_cast<int>(starts.size()) - 1;
+  g.ends.resize(static_cast<std::size_t>(nedges));
+  g.attrs.resize(static_cast<std::size_t>(nedges));
+  engine::parallel_chunks(nedges, 4096, threads, [&](int, engine::Chunk r) {
+    for (int e = r.begin; e < r.end; ++e) {
+      const int k = starts[e], l = starts[e + 1];
+      const auto [u, v] = key(order[k]);
+      g.ends[e] = {u, v};
+      g.attrs[e] = edge_attr(pieces, &order[k], static_cast<std::size_t>(l - k), g.points[u], g.points[v]);
+    }
+  });
 }
 
 }  // namespace

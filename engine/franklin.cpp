@@ -2,6 +2,9 @@
 // Each step is one call; the steps live in screen_scene.cpp (1, culling),
 // franklin_grid.cpp (2-9, 11) and arrangements/map_assembly.cpp (10).
 
+#include <algorithm>
+#include <iterator>
+
 #include "arrangements/map_builder.h"
 #ifndef VISMAP_FLOAT_KERNEL
 #include "arrangements/map_graph.h"   // (its graph has exact points)
@@ -18,20 +21,31 @@ namespace vismap {
 namespace {
 
 // The classified pieces as the map takes them, each pointing at its curve's end
-// points and faces list (in `faces`); the pieces are freed chunk by chunk.
+// points and faces list (in `faces`). Waves of chunks of pieces on `threads`
+// threads, each chunk freed once it is taken, each wave appended in order (the
+// pieces are never held twice).
 std::vector<MapPiece> map_pieces(engine::PieceChunks& pieces, const std::vector<engine::Curve>& curves,
-                                 const std::vector<FacesList>& faces) {
-  std::vector<MapPiece> mp;
+                                 const std::vector<FacesList>& faces, int threads) {
   std::size_t total = 0;
   for (const std::vector<engine::VisiblePiece>& chunk : pieces) total += chunk.size();
+  std::vector<MapPiece> mp;
   mp.reserve(total);
-  for (std::vector<engine::VisiblePiece>& chunk : pieces) {
-    for (const engine::VisiblePiece& p : chunk) {
-      const engine::Curve& c = curves[p.curve];
-      mp.push_back(MapPiece{p.a, p.b, c.s, c.t, p.left, p.right, p.visible, p.visible && c.drawn, c.kind,
-                            &faces[p.curve], c.order_face, p.curve});
-    }
-    std::vector<engine::VisiblePiece>().swap(chunk);
+  const int chunks = static_cast<int>(pieces.size()), wave = 64;
+  for (int w = 0; w < chunks; w += wave) {
+    std::vector<std::vector<MapPiece>> made(static_cast<std::size_t>(std::min(wave, chunks - w)));
+    engine::parallel_for(static_cast<int>(made.size()), threads, [&](int j) {
+      std::vector<engine::VisiblePiece>& chunk = pieces[static_cast<std::size_t>(w + j)];
+      std::vector<MapPiece> mine;
+      mine.reserve(chunk.size());
+      for (const engine::VisiblePiece& p : chunk) {
+        const engine::Curve& c = curves[p.curve];
+        mine.push_back(MapPiece{p.a, p.b, c.s, c.t, p.left, p.right, p.visible, p.visible && c.drawn, c.kind,
+                                &faces[p.curve], c.order_face, p.curve});
+      }
+      made[static_cast<std::size_t>(j)] = std::move(mine);
+      std::vector<engine::VisiblePiece>().swap(chunk);
+    });
+    for (std::vector<MapPiece>& m : made) std::move(m.begin(), m.end(), std::back_inserter(mp));
   }
   engine::PieceChunks().swap(pieces);
   return mp;
@@ -108,8 +122,8 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   // planes) are freed first. Each curve's faces list is kept for the map: the
   // curves go once its graph has its edges.
   release(ss.facets, threads);
-  const std::vector<FacesList> faces = faces_lists(ss.curves);
-  std::vector<MapPiece> mp = map_pieces(pieces, ss.curves, faces);
+  const std::vector<FacesList> faces = faces_lists(ss.curves, threads);
+  std::vector<MapPiece> mp = map_pieces(pieces, ss.curves, faces, threads);
   MapGraph graph = graph_of_pieces(mp, threads);
   // The graph holds what the map needs of the pieces and curves (their faces
   // lists aside): they are freed before the faces are traced and the map is

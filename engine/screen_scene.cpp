@@ -238,10 +238,11 @@ void order_on_screen(WorldFacets& wf, const Scene& scene, const View& view, int 
 
 }  // namespace
 
-std::vector<SmallInts> faces_lists(const std::vector<Curve>& curves) {
-  std::vector<SmallInts> out;
-  out.reserve(curves.size());
-  for (const Curve& c : curves) out.push_back(c.faces);
+std::vector<SmallInts> faces_lists(const std::vector<Curve>& curves, int threads) {
+  std::vector<SmallInts> out(curves.size());
+  parallel_chunks(static_cast<int>(curves.size()), 8192, threads, [&](int, Chunk r) {
+    for (int i = r.begin; i < r.end; ++i) out[static_cast<std::size_t>(i)] = curves[static_cast<std::size_t>(i)].faces;
+  });
   return out;
 }
 

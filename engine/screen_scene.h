@@ -134,7 +134,7 @@ Curve intersection_curve(const P3& s, const P3& t, int fa, int fb, int face_a, i
 
 // Each curve's faces list, as the map takes it (the map points at these; they
 // outlive the curves).
-std::vector<SmallInts> faces_lists(const std::vector<Curve>& curves);
+std::vector<SmallInts> faces_lists(const std::vector<Curve>& curves, int threads = 1);
 
 // Depth along a curve at a screen point p on it (depth is affine along a screen line).
 FT depth_on(const Curve& c, const P2& p);
