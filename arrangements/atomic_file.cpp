@@ -229,10 +229,9 @@ class BackgroundWriter {
       if (failed) {
         error_ = failed;
         queue_.clear();
-        changed_.notify_all();
-        return;
       }
       changed_.notify_all();
+      if (failed) return;
     }
   }
   void stop() {

@@ -96,26 +96,20 @@ std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph
   });
   std::partial_sum(first.begin(), first.end(), first.begin());
   std::vector<int> vertex_of(ends.size());
-  std::vector<std::vector<P2>> points(static_cast<std::size_t>(chunks));
-  engine::parallel_chunks(n, size, threads, [&](int c, engine::Chunk r) {
-    std::vector<P2> mine;   // (filled here, stored once: the chunks' slots share cache lines)
+  g.points.reserve(static_cast<std::size_t>(first.back()));
+  engine::parallel_append(g.points, chunks, threads, [&](int c, std::vector<P2>& points) {
+    const engine::Chunk r = engine::chunk(c, n, size);
     int w = first[c] - 1;
     for (int k = r.begin; k < r.end; ++k) {
       if (starts[k]) {
-        mine.push_back(point(ends[k]));
+        points.push_back(point(ends[k]));
         ++w;
       }
       vertex_of[ends[k].at] = w;
     }
-    points[c] = std::move(mine);
   });
-  g.points.reserve(static_cast<std::size_t>(first.back()));
-  g.approx.reserve(static_cast<std::size_t>(first.back()));
-  for (std::vector<P2>& chunk : points)
-    for (P2& p : chunk) {
-      g.approx.push_back(p.approx());
-      g.points.push_back(std::move(p));
-    }
+  g.approx.reserve(g.points.size());
+  for (const P2& p : g.points) g.approx.push_back(p.approx());
   return vertex_of;
 }
 

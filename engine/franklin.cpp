@@ -2,9 +2,6 @@
 // Each step is one call; the steps live in screen_scene.cpp (1, culling),
 // franklin_grid.cpp (2-9, 11) and arrangements/map_assembly.cpp (10).
 
-#include <algorithm>
-#include <iterator>
-
 #include "arrangements/map_builder.h"
 #ifndef VISMAP_FLOAT_KERNEL
 #include "arrangements/map_graph.h"   // (its graph has exact points)
@@ -21,32 +18,24 @@ namespace vismap {
 namespace {
 
 // The classified pieces as the map takes them, each pointing at its curve's end
-// points and faces list (in `faces`). Waves of chunks of pieces on `threads`
-// threads, each chunk freed once it is taken, each wave appended in order (the
-// pieces are never held twice).
+// points and faces list (in `faces`): a chunk of map pieces per chunk of pieces,
+// on `threads` threads, each chunk freed once it is taken.
 std::vector<MapPiece> map_pieces(engine::PieceChunks& pieces, const std::vector<engine::Curve>& curves,
                                  const std::vector<FacesList>& faces, int threads) {
   std::size_t total = 0;
   for (const std::vector<engine::VisiblePiece>& chunk : pieces) total += chunk.size();
   std::vector<MapPiece> mp;
   mp.reserve(total);
-  const int chunks = static_cast<int>(pieces.size()), wave = 64;
-  for (int w = 0; w < chunks; w += wave) {
-    std::vector<std::vector<MapPiece>> made(static_cast<std::size_t>(std::min(wave, chunks - w)));
-    engine::parallel_for(static_cast<int>(made.size()), threads, [&](int j) {
-      std::vector<engine::VisiblePiece>& chunk = pieces[static_cast<std::size_t>(w + j)];
-      std::vector<MapPiece> mine;
-      mine.reserve(chunk.size());
-      for (const engine::VisiblePiece& p : chunk) {
-        const engine::Curve& c = curves[p.curve];
-        mine.push_back(MapPiece{p.a, p.b, c.s, c.t, p.left, p.right, p.visible, p.visible && c.drawn, c.kind,
-                                &faces[p.curve], c.order_face, p.curve});
-      }
-      made[static_cast<std::size_t>(j)] = std::move(mine);
-      std::vector<engine::VisiblePiece>().swap(chunk);
-    });
-    for (std::vector<MapPiece>& m : made) std::move(m.begin(), m.end(), std::back_inserter(mp));
-  }
+  engine::parallel_append(mp, static_cast<int>(pieces.size()), threads, [&](int k, std::vector<MapPiece>& out) {
+    std::vector<engine::VisiblePiece>& chunk = pieces[static_cast<std::size_t>(k)];
+    out.reserve(chunk.size());
+    for (const engine::VisiblePiece& p : chunk) {
+      const engine::Curve& c = curves[p.curve];
+      out.push_back(MapPiece{p.a, p.b, c.s, c.t, p.left, p.right, p.visible, p.visible && c.drawn, c.kind,
+                             &faces[p.curve], c.order_face, p.curve});
+    }
+    std::vector<engine::VisiblePiece>().swap(chunk);
+  });
   engine::PieceChunks().swap(pieces);
   return mp;
 }

@@ -322,7 +322,8 @@ Grid make_grid(const ScreenScene& ss, double c, int threads, Stats& stats) {
     std::optional<CGAL::Bbox_2> b;   // (stored once, below)
     auto add = [&](const CGAL::Bbox_2& x) { b = b ? *b + x : x; };
     if (k < curve_chunks) {
-      for (int i = k * size; i < std::min(ncurves, (k + 1) * size); ++i) add(curve_box(ss, static_cast<std::size_t>(i)));
+      const Chunk r = chunk(k, ncurves, size);
+      for (int i = r.begin; i < r.end; ++i) add(curve_box(ss, static_cast<std::size_t>(i)));
     } else {
       const Chunk r = chunk(k - curve_chunks, nfacets, size);
       for (int i = r.begin; i < r.end; ++i)

@@ -149,27 +149,38 @@ void release(std::vector<T>& v, int threads) {
   std::vector<T>().swap(v);
 }
 
+// Appends to `out` the items of `chunks` chunks made in parallel, in chunk
+// order: fill(k, items) puts chunk k's into `items`, on the thread that runs it.
+// Waves of 64 chunks, each appended before the next: at most one wave's items
+// are held twice.
+template <class T, class Fill>
+void parallel_append(std::vector<T>& out, int chunks, int threads, Fill&& fill) {
+  const int wave = 64;
+  for (int w = 0; w < chunks; w += wave) {
+    std::vector<std::vector<T>> made(static_cast<std::size_t>(std::min(wave, chunks - w)));
+    parallel_for(static_cast<int>(made.size()), threads, [&](int j) {
+      std::vector<T> items;   // (filled here, stored once: the chunks' slots share cache lines)
+      fill(w + j, items);
+      made[static_cast<std::size_t>(j)] = std::move(items);
+    });
+    for (std::vector<T>& items : made) std::move(items.begin(), items.end(), std::back_inserter(out));
+  }
+}
+
 // A vector of n items made in parallel: make(k, i, item) fills item i (of chunk
-// k, chunks of `size`), each default-made on the thread that fills it; waves of
-// 64 chunks, each appended in order before the next, so that at most one wave is
-// held twice. (Kernel numbers default-made on one thread hold that thread's
-// shared zero: replaced on other threads, they would all release it there at
-// once, one reference count bouncing between the cores.)
+// k, chunks of `size`), each default-made on the thread that fills it. (Kernel
+// numbers default-made on one thread hold that thread's shared zero: replaced on
+// other threads, they would all release it there at once, one reference count
+// bouncing between the cores.)
 template <class T, class Make>
 std::vector<T> parallel_make(int n, int size, int threads, Make&& make) {
   std::vector<T> out;
   out.reserve(static_cast<std::size_t>(n));
-  const int chunks = chunk_count(n, size), wave = 64;
-  for (int w = 0; w < chunks; w += wave) {
-    std::vector<std::vector<T>> made(static_cast<std::size_t>(std::min(wave, chunks - w)));
-    parallel_for(static_cast<int>(made.size()), threads, [&](int j) {
-      const Chunk r = chunk(w + j, n, size);
-      std::vector<T>& items = made[static_cast<std::size_t>(j)];
-      items.resize(static_cast<std::size_t>(r.end - r.begin));
-      for (int i = r.begin; i < r.end; ++i) make(w + j, i, items[static_cast<std::size_t>(i - r.begin)]);
-    });
-    for (std::vector<T>& items : made) std::move(items.begin(), items.end(), std::back_inserter(out));
-  }
+  parallel_append(out, chunk_count(n, size), threads, [&](int k, std::vector<T>& items) {
+    const Chunk r = chunk(k, n, size);
+    items.resize(static_cast<std::size_t>(r.end - r.begin));
+    for (int i = r.begin; i < r.end; ++i) make(k, i, items[static_cast<std::size_t>(i - r.begin)]);
+  });
   return out;
 }
 

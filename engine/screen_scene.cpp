@@ -582,47 +582,38 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   M.occluder.resize(ss.facets.size());
   for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) M.occluder[fi] = ss.facets[fi].occluder;
 
-  // Chunks of pieces in parallel, a wave of chunks at a time; each wave's curves
-  // are appended in piece order before the next: the curves are never held
-  // twice (curves made in place instead would be default-made first, and their
-  // placeholder numbers, one shared object, then released by every thread at once).
-  // Latent curves: only their boxes are kept. (One Curve per chunk is made into
-  // again and again: make() sets every field.)
-  const int np = static_cast<int>(pieces.size()), size = 1024, wave = 64;
+  // Chunks of pieces in parallel, appended in piece order a wave of chunks at a
+  // time (parallel_append): the curves are never held twice (curves made in
+  // place instead would be default-made first, and their placeholder numbers,
+  // one shared object, then released by every thread at once). Latent curves:
+  // only their boxes are kept. (One Curve per chunk is made into again and
+  // again: make() sets every field.)
+  const int np = static_cast<int>(pieces.size()), size = 1024, chunks = chunk_count(np, size);
   if (!latent) ss.curves.reserve(pieces.size() + ss.facets.size() / 8);   // (+ near-plane cuts; + intersection lines later)
-  std::vector<std::array<std::int64_t, 3>> dropped(static_cast<std::size_t>(chunk_count(np, size)));
-  for (int w = 0; w < static_cast<int>(dropped.size()); w += wave) {
-    const auto n = static_cast<std::size_t>(std::min(wave, static_cast<int>(dropped.size()) - w));
-    std::vector<std::vector<Curve>> made(n);
-    std::vector<std::vector<std::pair<int, CGAL::Bbox_2>>> left(n);
-    const std::size_t first_ends = ss.ends.size();
-    for (std::size_t j = 0; j < n; ++j) ss.ends.emplace_back();
-    parallel_for(static_cast<int>(n), threads, [&](int j) {
-      const int k = w + j;
-      const Chunk r = chunk(k, np, size);
-      std::deque<P3>& ends = ss.ends[first_ends + static_cast<std::size_t>(j)];
-      // (Filled here, stored once: the slots of chunks side by side share cache lines.)
-      std::vector<Curve> out;
-      std::vector<std::pair<int, CGAL::Bbox_2>> boxes;
-      std::array<std::int64_t, 3> count{};
-      if (!latent) out.reserve(static_cast<std::size_t>(r.end - r.begin));
-      Curve c;
-      for (int i = r.begin; i < r.end; ++i) {
-        if (!M.make(ss.facets, pieces[static_cast<std::size_t>(i)], c, count, ends)) continue;
-        if (latent && !c.drawn) boxes.emplace_back(i, c.box);
-        else out.push_back(std::move(c));
-      }
-      made[static_cast<std::size_t>(j)] = std::move(out);
-      left[static_cast<std::size_t>(j)] = std::move(boxes);
-      dropped[static_cast<std::size_t>(k)] = count;
-    });
-    for (std::vector<Curve>& m : made) std::move(m.begin(), m.end(), std::back_inserter(ss.curves));
-    for (const auto& l : left)
-      for (const auto& [piece, box] : l) {
-        ss.latent_piece.push_back(piece);
-        ss.latent_box.push_back(box);
-      }
-  }
+  std::vector<std::array<std::int64_t, 3>> dropped(static_cast<std::size_t>(chunks));
+  std::vector<std::vector<std::pair<int, CGAL::Bbox_2>>> left(static_cast<std::size_t>(chunks));
+  const std::size_t first_ends = ss.ends.size();
+  for (int k = 0; k < chunks; ++k) ss.ends.emplace_back();
+  parallel_append(ss.curves, chunks, threads, [&](int k, std::vector<Curve>& out) {
+    const Chunk r = chunk(k, np, size);
+    std::deque<P3>& ends = ss.ends[first_ends + static_cast<std::size_t>(k)];
+    std::vector<std::pair<int, CGAL::Bbox_2>> boxes;   // (filled here, stored once)
+    std::array<std::int64_t, 3> count{};
+    if (!latent) out.reserve(static_cast<std::size_t>(r.end - r.begin));
+    Curve c;
+    for (int i = r.begin; i < r.end; ++i) {
+      if (!M.make(ss.facets, pieces[static_cast<std::size_t>(i)], c, count, ends)) continue;
+      if (latent && !c.drawn) boxes.emplace_back(i, c.box);
+      else out.push_back(std::move(c));
+    }
+    left[static_cast<std::size_t>(k)] = std::move(boxes);
+    dropped[static_cast<std::size_t>(k)] = count;
+  });
+  for (const auto& l : left)
+    for (const auto& [piece, box] : l) {
+      ss.latent_piece.push_back(piece);
+      ss.latent_box.push_back(box);
+    }
   std::int64_t dropped_hidden = 0, dropped_clipped = 0, dropped_point = 0;
   for (const auto& d : dropped) {
     dropped_hidden += d[0];
@@ -658,22 +649,19 @@ void make_latent_curves(ScreenScene& ss, const std::vector<char>& wanted, int th
   std::vector<int> pick;
   for (std::size_t i = 0; i < wanted.size(); ++i)
     if (wanted[i]) pick.push_back(ss.latent_piece[i]);
-  const int n = static_cast<int>(pick.size()), size = 1024;
-  std::vector<std::vector<Curve>> made(static_cast<std::size_t>(chunk_count(n, size)));
+  const int n = static_cast<int>(pick.size()), size = 1024, chunks = chunk_count(n, size);
   const std::size_t first_ends = ss.ends.size();
-  for (std::size_t k = 0; k < made.size(); ++k) ss.ends.emplace_back();
-  parallel_chunks(n, size, threads, [&](int k, Chunk r) {
+  for (int k = 0; k < chunks; ++k) ss.ends.emplace_back();
+  parallel_append(ss.curves, chunks, threads, [&](int k, std::vector<Curve>& out) {
     std::array<std::int64_t, 3> dropped{};   // (counted when it was left latent)
     std::deque<P3>& ends = ss.ends[first_ends + static_cast<std::size_t>(k)];
-    std::vector<Curve> mine;   // (filled here, stored once: the chunks' slots share cache lines)
+    const Chunk r = chunk(k, n, size);
     for (int i = r.begin; i < r.end; ++i) {
       Curve c;
       if (ss.maker->make(ss.facets, ss.maker->pieces[static_cast<std::size_t>(pick[i])], c, dropped, ends))
-        mine.push_back(std::move(c));
+        out.push_back(std::move(c));
     }
-    made[static_cast<std::size_t>(k)] = std::move(mine);
   });
-  for (std::vector<Curve>& m : made) std::move(m.begin(), m.end(), std::back_inserter(ss.curves));
   std::vector<CGAL::Bbox_2>().swap(ss.latent_box);
   std::vector<int>().swap(ss.latent_piece);
   ss.maker.reset();

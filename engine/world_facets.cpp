@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cstring>
-#include <iterator>
 
 #include "engine/parallel.h"
 
@@ -254,22 +253,19 @@ void facets_of_faces(const Scene& scene, const std::vector<std::uint32_t>& canon
 
 WorldFacets make_world_facets(const Scene& scene, int threads) {
   const std::vector<std::uint32_t> canon = canonical_vertex_ids(scene);
-  // Chunks of faces in parallel, joined in order.
-  const int nfaces = static_cast<int>(scene.faces.size()), size = 4096;
-  std::vector<WorldFacets> chunks(static_cast<std::size_t>(chunk_count(nfaces, size)));
-  parallel_chunks(nfaces, size, threads, [&](int k, Chunk r) {
-    WorldFacets c;   // (filled here, stored once: the chunks' slots share cache lines)
-    c.facets.reserve(static_cast<std::size_t>(r.end - r.begin));
-    facets_of_faces(scene, canon, r, c);
-    chunks[static_cast<std::size_t>(k)] = std::move(c);
-  });
+  // Chunks of faces in parallel, joined in order (their counts beside them).
+  const int nfaces = static_cast<int>(scene.faces.size()), size = 4096, chunks = chunk_count(nfaces, size);
+  std::vector<WorldFacets> counts(static_cast<std::size_t>(chunks));
   WorldFacets out;
-  std::size_t total = 0;
-  for (const WorldFacets& c : chunks) total += c.facets.size();
-  out.facets.reserve(total);
-  for (WorldFacets& c : chunks) {
-    std::move(c.facets.begin(), c.facets.end(), std::back_inserter(out.facets));
-    std::vector<WorldFacet>().swap(c.facets);
+  out.facets.reserve(scene.faces.size());
+  parallel_append(out.facets, chunks, threads, [&](int k, std::vector<WorldFacet>& facets) {
+    WorldFacets c;
+    c.facets.reserve(static_cast<std::size_t>(size));
+    facets_of_faces(scene, canon, chunk(k, nfaces, size), c);
+    facets = std::move(c.facets);
+    counts[static_cast<std::size_t>(k)] = std::move(c);
+  });
+  for (const WorldFacets& c : counts) {
     out.degenerate += c.degenerate;
     out.nonplanar += c.nonplanar;
     out.nonconvex += c.nonconvex;
