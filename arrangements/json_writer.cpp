@@ -40,6 +40,34 @@ void ring(std::string& out, const Ring& r, const std::vector<std::string>& text)
   out += ']';
 }
 
+void faces(std::string& out, const std::vector<int>& f) {
+  out += '[';
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    if (k) out += ',';
+    out += std::to_string(f[k]);
+  }
+  out += ']';
+}
+
+// "hidden" (only when asked for): segments with their own end points.
+void hidden(std::string& out, const std::vector<HiddenSegment>& list) {
+  out += ",\n\"hidden\":[";
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const HiddenSegment& h = list[i];
+    out += i ? ",\n" : "\n";
+    out += "{\"from\":";
+    point(out, h.from);
+    out += ",\"to\":";
+    point(out, h.to);
+    out += ",\"kind\":\"";
+    out += to_string(h.kind);
+    out += "\",\"faces\":";
+    faces(out, h.faces);
+    out += '}';
+  }
+  out += ']';
+}
+
 }  // namespace
 
 std::string to_json(const VisibilityMap& map, int threads) {
@@ -102,15 +130,14 @@ void write_json(const VisibilityMap& map, const std::function<void(const std::st
     out += text[s.to];
     out += ",\"kind\":\"";
     out += to_string(s.kind);
-    out += "\",\"faces\":[";
-    for (std::size_t k = 0; k < s.faces.size(); ++k) {
-      if (k) out += ',';
-      out += std::to_string(s.faces[k]);
-    }
-    out += "]}";
+    out += "\",\"faces\":";
+    faces(out, s.faces);
+    out += '}';
     pass_on();
   }
-  out += "],\n\"stats\":{\"seconds\":{";
+  out += "]";
+  if (map.has_hidden) hidden(out, map.hidden);
+  out += ",\n\"stats\":{\"seconds\":{";
   char buf[64];
   for (std::size_t i = 0; i < map.stats.seconds.size(); ++i) {
     if (i) out += ',';

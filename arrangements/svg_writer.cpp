@@ -41,6 +41,7 @@ struct Frame {
       ya = std::min(ya, y); yb = std::max(yb, y);
     };
     for (const auto& p : map.vertices) grow(p);   // (every vertex is on an outer ring or a segment)
+    for (const auto& h : map.hidden) { grow(h.from); grow(h.to); }   // (may lie outside them)
     if (xa > xb) { xa = ya = 0; xb = yb = 1; }
     const double extent = std::max({xb - xa, yb - ya, 1e-300});
     x0 = xa;
@@ -91,9 +92,18 @@ std::string to_svg(const VisibilityMap& map, const Scene& scene, const View& vie
     }
     out += "</g>\n";
   }
-  char buf[128];
+  char buf[200];
+  const double width = std::max(0.5, opt.size / 1000);
+  if (!map.hidden.empty()) {   // under the visible lines: thin, dashed
+    std::snprintf(buf, sizeof buf,
+                  "<g stroke=\"black\" stroke-width=\"%.3f\" stroke-dasharray=\"%.3f %.3f\" fill=\"none\">\n",
+                  width / 2, 4 * width, 2 * width);
+    out += buf;
+    for (const auto& h : map.hidden) out += "<path d=\"M" + frame.xy(h.from) + " L" + frame.xy(h.to) + "\"/>\n";
+    out += "</g>\n";
+  }
   std::snprintf(buf, sizeof buf, "<g stroke=\"black\" stroke-width=\"%.3f\" stroke-linecap=\"round\" fill=\"none\">\n",
-                std::max(0.5, opt.size / 1000));
+                width);
   out += buf;
   for (const auto& s : map.segments)
     out += "<path d=\"M" + frame.xy(map.at(s.from)) + " L" + frame.xy(map.at(s.to)) + "\"/>\n";

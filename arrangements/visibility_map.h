@@ -37,6 +37,13 @@ struct Segment {
   std::vector<int> faces;                     // ascending
 };
 
+// A hidden line (spec: "hidden"): its own end points, from < to (lexicographic).
+struct HiddenSegment {
+  Point2 from, to;
+  EdgeKind kind = EdgeKind::Border;
+  std::vector<int> faces;                     // ascending
+};
+
 // Free-form counters and phase timings, written in insertion order.
 struct Stats {
   std::vector<std::pair<std::string, double>> seconds;
@@ -62,6 +69,8 @@ struct VisibilityMap {
   bool has_regions = true;                    // false: computed for its lines alone (a lines-only
                                               // drawing); the JSON then has no "regions" key
   std::vector<Segment> segments;              // canonical order
+  bool has_hidden = false;                    // hidden lines were asked for: the JSON has "hidden"
+  std::vector<HiddenSegment> hidden;          // sorted by (from, to)
   const Point2& at(std::uint32_t v) const { return vertices[v]; }
   std::vector<Point2> points(const Ring& r) const {   // (for readers that want coordinates)
     std::vector<Point2> out;

@@ -41,6 +41,8 @@ camera (default: orthographic, the whole scene seen obliquely):
 lines:
   --crease DEG         dihedral angle making a shared edge a crease (default 30)
   --smooth             also draw smooth edges
+  --hidden             also the hidden lines: the JSON's "hidden" list, drawn
+                       thin and dashed in the SVG
 engine:
   --algorithm A        franklin (default: Franklin's variable grid) or newell
                        (Newell, Newell & Sancha's depth sort with plane
@@ -140,6 +142,7 @@ int main(int argc, char** argv) {
         if (!(n >= 1 && n <= 1024 && n == std::floor(n))) throw Usage("--threads expects a whole number from 1 to 1024, got '" + v + "'");
         eng.threads = static_cast<int>(n);
       } else if (a == "--smooth") eng.smooth = true;
+      else if (a == "--hidden") eng.hidden = true;
       else if (a == "--stats") stats = true;
       else if (a == "--format") {
         format = value();

@@ -7,6 +7,9 @@
 #include "arrangements/map_graph.h"   // (its graph has exact points)
 #endif
 #include "engine/franklin_grid.h"
+#ifndef VISMAP_FLOAT_KERNEL
+#include "engine/hidden_lines.h"
+#endif
 #include "engine/screen_scene.h"
 #include "engine/engine_run.h"
 #include "engine/parallel.h"
@@ -136,6 +139,10 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
                                      st.counted("pieces"));
   st.count("predicates", exact::filter_counts.calls - filter_before.calls);
   st.count("predicates_exact", exact::filter_counts.exact - filter_before.exact);
+#ifndef VISMAP_FLOAT_KERNEL
+  // The hidden lines, when asked: from the finished map (engine/hidden_lines.h).
+  if (opt.hidden) add_hidden_lines(scene, view, run, map);
+#endif
   return map;
 }
 

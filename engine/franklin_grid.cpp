@@ -87,15 +87,18 @@ bool in_cell(const Grid& g, int ix, int iy, const P2& p) {   // (no lazy coordin
          cell_index_of(g.Y, approx_y(p), [&] { return exact_y(p); }) == iy;
 }
 
-// +1 for counter-clockwise facets, -1 for clockwise: the side their interior is on.
-int turn(const Facet& f) { return f.facing == Facing::Front ? 1 : -1; }
 
-// Corner p strictly inside the projection of the convex facet f.
+}  // namespace
+
 bool strictly_inside(const Facet& f, const P2& p) {
   return strictly_inside_convex(f.v.size(), turn(f), [&](std::size_t i, std::size_t j) {
     return static_cast<int>(CGAL::orientation(f.v[i].xy(), f.v[j].xy(), p));
   });
 }
+
+namespace {
+
+// Corner p strictly inside the projection of the convex facet f.
 bool strictly_inside(const Facet& f, const Corner& p) {
   return strictly_inside_convex(f.v.size(), turn(f), [&](std::size_t i, std::size_t j) {
     return static_cast<int>(orientation(f.v[i], f.v[j], p));
@@ -143,10 +146,9 @@ bool in_world_plane(const std::vector<Vec3>& input, long v, const Facet& f) {
   return false;
 }
 
-// sign(depth of p - depth of f's plane under p). Where p is input vertex id (or
-// -1) and world the input's vertices, an exact zero (a vertex of a coplanar
-// neighbour: common on flat parts of a mesh) is found without rationals.
-CGAL::Sign depth_above(const P3& p, const Facet& f, const std::vector<Vec3>* world = nullptr, long id = -1) {
+}  // namespace
+
+CGAL::Sign depth_above(const P3& p, const Facet& f, const std::vector<Vec3>* world, long id) {
   return filtered_sign(
       [&] { return approx_of(p.z) - (approx_of(f.a) * approx_of(p.x) + approx_of(f.b) * approx_of(p.y) + approx_of(f.c)); },
       [&]() -> mpq_class {
@@ -154,6 +156,8 @@ CGAL::Sign depth_above(const P3& p, const Facet& f, const std::vector<Vec3>* wor
         return to_mpq(p.z) - (to_mpq(f.a) * to_mpq(p.x) + to_mpq(f.b) * to_mpq(p.y) + to_mpq(f.c));
       });
 }
+
+namespace {
 
 // Both points strictly behind the plane of b: the whole segment is. (Used with b
 // a cell's blocker.)
@@ -605,8 +609,8 @@ bool apart_in_world(const Facet& A, const Facet& B, const std::vector<Vec3>& wor
   return meet_only_at_shared_corner(A, B, world);
 }
 
-// Where facets A and B cross in 3D strictly inside both projections, as a screen
-// segment; false when they do not, or only along an edge of either.
+}  // namespace
+
 bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3>* world, P2& p, P2& q) {
   // Most pairs a grid offers are neighbours on a mesh, apart: told on doubles.
   if (world && apart_in_world(A, B, *world)) return false;
@@ -668,8 +672,6 @@ bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3
   q = p0 + hi * d;
   return true;
 }
-
-}  // namespace
 
 // Facets with an edge in common (by identity) meet only along it, or lie in one
 // plane: they never pierce each other. (The commonest pair on a mesh, told
@@ -912,13 +914,7 @@ void bucket_curves(Grid& g, ScreenScene& ss, bool regions, int threads, Stats& s
   stats.count("edges_culled_behind_blocking_face", hidden);
 }
 
-namespace {
-
-// The screen point where two curves on one line have equal depth, strictly
-// inside their common part; false if their depth order does not change there.
-// sign(depth of C at p - depth of D at p) for collinear curves C and D and a
-// point p of their common line, parametrised along x (along y if the line is
-// vertical): depth_C(p) = N_C / d_C with d_C = t.x - s.x and
+// Along x: depth_C(p) = N_C / d_C with d_C = t.x - s.x and
 // N_C = s.z d_C + (p.x - s.x)(t.z - s.z); the sign of N_C d_D - N_D d_C times
 // those of d_C and d_D. A filtered predicate: no lazy number is built.
 CGAL::Sign depth_gap(const Curve& C, const Curve& D, const P2& p, bool along_x) {
@@ -957,6 +953,8 @@ bool depth_crossing(const Curve& C, const Curve& D, const P2& lo, const P2& hi, 
   x = lo + mu * (hi - lo);
   return true;
 }
+
+namespace {
 
 // Where segments [a, b] and [c, d] cross (they do, properly). In exact builds a
 // lazy point of one node: its interval is computed here, and its exact value

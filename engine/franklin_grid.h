@@ -50,6 +50,27 @@ struct VisiblePiece {
   bool boundary = false;        // this curve bounds a region here
 };
 
+// Facet and curve geometry the grid's steps use, shared with hidden_lines.cpp.
+// +1 for counter-clockwise facets, -1 for clockwise: the side their interior is on.
+inline int turn(const Facet& f) { return f.facing == Facing::Front ? 1 : -1; }
+// Screen point p strictly inside the projection of the convex facet f.
+bool strictly_inside(const Facet& f, const P2& p);
+// sign(depth of p - depth of f's plane under p). Where p is input vertex id (or
+// -1) and world the input's vertices, an exact zero (a vertex of a coplanar
+// neighbour: common on flat parts of a mesh) is found without rationals.
+CGAL::Sign depth_above(const P3& p, const Facet& f, const std::vector<Vec3>* world = nullptr, long id = -1);
+// Where facets A and B cross in 3D strictly inside both projections, as a screen
+// segment p-q; false when they do not, or only along an edge of either.
+bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3>* world, P2& p, P2& q);
+// Facets with an edge in common (by identity): they never pierce each other.
+bool share_an_edge(const Facet& A, const Facet& B);
+// sign(depth of C - depth of D) at point p of the common screen line of curves C
+// and D, parametrised along x (along y if the line is vertical).
+CGAL::Sign depth_gap(const Curve& C, const Curve& D, const P2& p, bool along_x);
+// The screen point x where collinear curves C and D have equal depth, strictly
+// between lo and hi on their line; false if their depth order does not change there.
+bool depth_crossing(const Curve& C, const Curve& D, const P2& lo, const P2& hi, P2& x);
+
 Grid make_grid(const ScreenScene& ss, double c, int threads, Stats& stats);       // steps 2-4
 void bucket_facets(Grid& g, ScreenScene& ss, int threads, Stats& stats);                       // step 5
 void prune_facets(Grid& g, const ScreenScene& ss, int threads, Stats& stats);                  // step 6

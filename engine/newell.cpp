@@ -11,6 +11,7 @@
 #include "engine/newell_overlay.h"
 #include "engine/screen_scene.h"
 #include "engine/engine_run.h"
+#include "engine/hidden_lines.h"
 #include "engine/visibility.h"
 
 namespace vismap {
@@ -55,6 +56,8 @@ VisibilityMap visibility_newell(const Scene& scene, const View& view, const Engi
   else { map.regions.clear(); map.has_regions = false; }
   st.count("predicates", exact::filter_counts.calls - filter_before.calls);
   st.count("predicates_exact", exact::filter_counts.exact - filter_before.exact);
+  // The hidden lines, when asked: from the finished map (engine/hidden_lines.h).
+  if (opt.hidden) add_hidden_lines(scene, view, opt, map);
 
   if (painter) {
     painter->clear();

@@ -365,8 +365,49 @@ bool CurveMaker::make(const std::vector<Facet>& facets, const WorldPiece& wp, Cu
   return true;
 }
 
+namespace {
+
+// Back faces of closed components hide nothing that their component's front
+// faces do not already hide, unless seen through a cap of the near plane's cut
+// (engine/culling.h): they stop being occluders (counted).
+void cull_back_faces(ScreenScene& ss, const CurveMaker& M, const View& view, const std::vector<std::int8_t>& zsign,
+                     Stats& stats, int threads) {
+  const ClosedComponents cc = closed_components(*M.scene, M.wf, M.pieces, threads);
+  std::vector<NearCap> caps;
+  if (view.perspective) {
+    NearPlane np;
+    np.z_sign = [&](std::uint32_t id) { return static_cast<int>(zsign[M.local[id]]); };
+    np.facet_cut = [&](int fi, CGAL::Bbox_2& b) {
+      const auto& ce = M.clip_edges[static_cast<std::size_t>(fi)];
+      if (ce.size() != 2) return false;
+      b = box_of(ce[0]) + box_of(ce[1]);
+      return true;
+    };
+    np.on_plane = [&](std::uint32_t id) { return box_of(M.near_image(M.world(id))); };
+    caps = near_caps(M.wf, M.pieces, cc, np);
+  }
+  std::vector<CGAL::Bbox_2> facet_box(ss.facets.size());
+  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) facet_box[fi] = ss.facets[fi].box;
+  const std::vector<char> hidden_back = hidden_when_back_facing(cc, caps, facet_box);
+  std::int64_t back = 0;
+  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) {
+    Facet& f = ss.facets[fi];
+    const int side = cc.side[fi];
+    if (!f.occluder || !hidden_back[fi]) continue;
+    if ((side > 0 && f.facing == Facing::Back) || (side < 0 && f.facing == Facing::Front)) {
+      f.occluder = false;
+      ++back;
+    }
+  }
+  stats.count("culled_back_faces", back);
+  stats.count("near_plane_caps", static_cast<std::int64_t>(caps.size()));
+
+}
+
+}  // namespace
+
 ScreenScene make_screen_scene(const Scene& scene, const View& view, const EngineOptions& opt,
-                              Stats& stats, bool latent) {
+                              Stats& stats, bool latent, bool cull) {
   if (scene.vertices.size() > static_cast<std::size_t>(std::numeric_limits<VertexId>::max()))
     throw std::invalid_argument("the scene has 2^31 vertices or more (vertex ids are 32-bit)");
   auto maker = std::make_shared<CurveMaker>();
@@ -546,38 +587,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
   stats.count("culled_outside_view", outside);
   stats.count("culled_edge_on", edge_on);
 
-  // Back faces of closed components hide nothing that their component's front
-  // faces do not already hide, unless seen through a cap of the near plane's cut
-  // (engine/culling.h).
-  const ClosedComponents cc = closed_components(scene, wf, pieces, threads);
-  std::vector<NearCap> caps;
-  if (view.perspective) {
-    NearPlane np;
-    np.z_sign = [&](std::uint32_t id) { return static_cast<int>(zsign[local[id]]); };
-    np.facet_cut = [&](int fi, CGAL::Bbox_2& b) {
-      const auto& ce = clip_edges[static_cast<std::size_t>(fi)];
-      if (ce.size() != 2) return false;
-      b = box_of(ce[0]) + box_of(ce[1]);
-      return true;
-    };
-    np.on_plane = [&](std::uint32_t id) { return box_of(M.near_image(M.world(id))); };
-    caps = near_caps(wf, pieces, cc, np);
-  }
-  std::vector<CGAL::Bbox_2> facet_box(ss.facets.size());
-  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) facet_box[fi] = ss.facets[fi].box;
-  const std::vector<char> hidden_back = hidden_when_back_facing(cc, caps, facet_box);
-  std::int64_t back = 0;
-  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) {
-    Facet& f = ss.facets[fi];
-    const int side = cc.side[fi];
-    if (!f.occluder || !hidden_back[fi]) continue;
-    if ((side > 0 && f.facing == Facing::Back) || (side < 0 && f.facing == Facing::Front)) {
-      f.occluder = false;
-      ++back;
-    }
-  }
-  stats.count("culled_back_faces", back);
-  stats.count("near_plane_caps", static_cast<std::int64_t>(caps.size()));
+  if (cull) cull_back_faces(ss, M, view, zsign, stats, threads);
 
   M.occluder.resize(ss.facets.size());
   for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) M.occluder[fi] = ss.facets[fi].occluder;

@@ -120,8 +120,10 @@ struct ScreenScene {
 
 // With `latent`, curves that are not drawn are left latent (a lines-only drawing
 // needs only those near a drawn one: most of a smooth mesh's edges are not).
+// Without `cull`, back faces of closed solids stay occluders and their edges
+// curves (the hidden lines need every edge).
 ScreenScene make_screen_scene(const Scene& scene, const View& view, const EngineOptions& opt,
-                              Stats& stats, bool latent = false);
+                              Stats& stats, bool latent = false, bool cull = true);
 
 // Makes the latent curves whose flag in `wanted` is set, appended to ss.curves in
 // latent order (as make_screen_scene would have made them); no curve is latent

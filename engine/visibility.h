@@ -15,6 +15,7 @@ struct EngineOptions {
   double crease_deg = 30;   // dihedral angle above which a shared edge is a crease
   double grid_c = 4.0;      // Franklin's c in B = c * min(sqrt(N), 1/L)
   bool smooth = false;      // also draw smooth edges
+  bool hidden = false;      // also the hidden lines (the map's `hidden` list)
   bool regions = true;      // false: the segments alone (a lines-only drawing), computing
                             // only what the drawn lines need; the map has no regions
   Algorithm algorithm = Algorithm::Franklin;   // for callers that dispatch (the CLI)

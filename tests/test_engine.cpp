@@ -43,6 +43,13 @@ std::string segments_of(const std::string& json) {
   return from == std::string::npos ? "" : json.substr(from, to - from);
 }
 
+// A map's JSON text up to its stats, without its "hidden" list: the map as
+// written without --hidden (whose counters differ).
+std::string without_hidden(const std::string& json) {
+  const auto from = json.find(",\n\"hidden\""), to = json.find(",\n\"stats\"");
+  return json.substr(0, std::min(from, to));
+}
+
 // ---- the degenerate corpus, end to end ----------------------------------------
 
 std::vector<Case> corpus() {
@@ -80,10 +87,19 @@ TEST_P(Corpus, CheckerAcceptsTheMapAndRunsAreReproducible) {
   EXPECT_EQ(segments_of(slurp(lines)), segments_of(json)) << "--no-regions changed the segments";
   EXPECT_EQ(slurp(lines).find("\"regions\""), std::string::npos) << "--no-regions wrote regions";
   EXPECT_EQ(slurp(svg_lines), slurp(svg_whole)) << "a lines-only drawing differs from the whole map's";
+  // With the hidden lines: the same map, plus its "hidden" list.
+  const fs::path with_hidden = dir / (c.file + ".hidden.json");
+  const std::string cmd = std::string(VISMAP_BIN) + " '" + scene.string() + "' " + c.args + " --hidden --json '" +
+                          with_hidden.string() + "'";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const std::string hidden_json = slurp(with_hidden);
+  EXPECT_NE(hidden_json.find("\"hidden\""), std::string::npos) << "--hidden wrote no hidden lines";
+  EXPECT_EQ(without_hidden(hidden_json), without_hidden(json)) << "--hidden changed the rest of the map";
   vismap_check::Options opt;
   opt.smooth = c.args.find("--smooth") != std::string::npos;
   if (auto k = c.args.find("--crease "); k != std::string::npos) opt.crease_deg = std::stod(c.args.substr(k + 9));
   expect_checked(vismap::read_scene(scene.string()), json, opt, c.file);
+  expect_checked(vismap::read_scene(scene.string()), hidden_json, opt, c.file + " (hidden lines)");
   fs::remove_all(dir);
 }
 
@@ -141,6 +157,11 @@ TEST_P(Random, CheckerAcceptsTheMap) {
   opt.seed = seed;
   const std::string json = map_json(scene, view, {});
   expect_checked(scene, json, opt, rc.name + " seed " + std::to_string(seed));
+  vismap::EngineOptions hidden;
+  hidden.hidden = true;
+  const std::string hidden_json = map_json(scene, view, hidden);
+  EXPECT_EQ(without_hidden(hidden_json), without_hidden(json)) << rc.name + " seed " + std::to_string(seed) << ": hidden lines changed the map";
+  expect_checked(scene, hidden_json, opt, rc.name + " seed " + std::to_string(seed) + " (hidden lines)");
   vismap::EngineOptions lines_only;
   lines_only.regions = false;
   EXPECT_EQ(segments_of(map_json(scene, view, lines_only)), segments_of(json))

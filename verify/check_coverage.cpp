@@ -196,8 +196,8 @@ void edges(Context& c) {
   }
 }
 
-// The stretches of the line where the planes of pieces p and r meet that lie
-// inside both projections, as pairs of end points; `dir` is the line's direction.
+}  // namespace
+
 std::vector<std::pair<P2, P2>> crossing_stretches(const Piece& p, const Piece& r, P2& dir) {
   std::vector<std::pair<P2, P2>> out;
   mpq_class A = p.pa - r.pa, B = p.pb - r.pb, C = p.pc - r.pc;   // A x + B y + C = 0
@@ -236,6 +236,8 @@ std::vector<std::pair<P2, P2>> crossing_stretches(const Piece& p, const Piece& r
   }
   return out;
 }
+
+namespace {
 
 void intersections(Context& c) {
   const auto& ps = c.sc.pieces;

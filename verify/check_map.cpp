@@ -17,6 +17,7 @@ Report check_map(const vismap::Scene& scene, const std::string& json_text, const
       check_area(c);
       check_segments(c);
       check_coverage(c);
+      if (doc.has_hidden) check_hidden(c);
     } else {
       fail.add("format: the map is too broken for the geometric checks");
     }

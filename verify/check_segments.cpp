@@ -38,9 +38,6 @@ std::string why_nothing(const LineView& lv) {
   return "no edge piece or intersection line lies there";
 }
 
-namespace {
-
-// Interior sample parameters, simplest first; the first few clean ones are used.
 std::vector<mpq_class> parameters() {
   std::vector<mpq_class> ts;
   for (unsigned d : {2u, 3u, 4u, 5u, 7u, 11u, 13u, 17u, 19u})
@@ -48,6 +45,8 @@ std::vector<mpq_class> parameters() {
       if (std::gcd(n, d) == 1) ts.emplace_back(n, d);
   return ts;
 }
+
+namespace {
 
 constexpr int kPointsPerSegment = 3;
 

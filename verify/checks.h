@@ -21,6 +21,7 @@ void check_area(Context& c);       // 5: total area of the regions = area of the
 void check_segments(Context& c);   // 6: each segment is a visible line of the right kind
 void check_coverage(Context& c);   // 7: each visible edge / intersection line is drawn
 void check_topology(Context& c);   // segments meet only at endpoints; no superfluous vertex
+void check_hidden(Context& c);     // 8: the hidden lines, where the map has them
 
 std::string describe(const std::vector<std::uint32_t>& faces, Kind k);   // "crease [3,4]"
 
@@ -29,6 +30,13 @@ std::vector<std::size_t> segments_at(const MapDoc& doc, const P2& q);
 
 // Why no visible drawn line is at a point (for messages), from its LineView.
 std::string why_nothing(const LineView& lv);
+
+// Interior sample parameters along a segment, simplest first (1/2, 1/3, 2/3, ...).
+std::vector<mpq_class> parameters();
+
+// The stretches of the line where the planes of pieces p and r meet that lie
+// inside both projections, as pairs of end points; `dir` is the line's direction.
+std::vector<std::pair<P2, P2>> crossing_stretches(const Piece& p, const Piece& r, P2& dir);
 
 // Parameters 0 = t0 < t1 < ... < 1 along the screen segment a -> b (depth da -> db)
 // between which nothing over the line changes (check_coverage.cpp).

@@ -42,7 +42,7 @@ class Reader {
     static const char* const kKeys[] = {"format", "version", "scene", "projection",
                                         "view_matrix", "regions", "segments", "stats"};
     for (const auto& [k, v] : root.members) {
-      bool known = false;
+      bool known = k == "hidden";   // (optional: only when hidden lines were asked for)
       for (const char* want : kKeys) known = known || k == want;
       if (!known) fail_.add("format: unknown top-level key \"" + k + "\"");
     }
@@ -97,6 +97,16 @@ class Reader {
       }
     } else {
       ok = false;
+    }
+    if (const Json* hid = root.get("hidden")) {
+      doc.has_hidden = true;
+      if (!hid->is(Json::Type::Array)) {
+        fail_.add("format: \"hidden\" is not an array");
+        ok = false;
+      } else {
+        for (std::size_t i = 0; i < hid->items.size(); ++i) segment(hid->items[i], i, doc, true);
+        hidden_order(doc.hidden);
+      }
     }
     doc.usable = ok;
     return doc;
@@ -268,8 +278,19 @@ class Reader {
     doc.regions.push_back(std::move(r));
   }
 
-  void segment(const Json& v, std::size_t i, MapDoc& doc) {
-    std::string where = "segments[" + std::to_string(i) + "]";
+  // Hidden segments run from the lexicographically smaller end and are sorted
+  // by (from, to) (the spec's canonical form).
+  void hidden_order(const std::vector<MapSegment>& h) {
+    auto less = [](const P2& l, const P2& r) { return l.x < r.x || (l.x == r.x && l.y < r.y); };
+    for (std::size_t i = 0; i < h.size(); ++i) {
+      if (!less(h[i].from, h[i].to)) fail_.add("format: hidden[" + std::to_string(i) + "] runs from its larger end");
+      if (i > 0 && !(less(h[i - 1].from, h[i].from) || (h[i - 1].from == h[i].from && less(h[i - 1].to, h[i].to))))
+        fail_.add("format: hidden[" + std::to_string(i) + "] is out of (from, to) order");
+    }
+  }
+
+  void segment(const Json& v, std::size_t i, MapDoc& doc, bool hidden = false) {
+    std::string where = (hidden ? "hidden[" : "segments[") + std::to_string(i) + "]";
     if (!v.is(Json::Type::Object)) {
       fail_.add("format: " + where + " is not an object");
       return;
@@ -332,7 +353,7 @@ class Reader {
     }
     if (!ok) return;
     s.box = box_of(s.from, s.to);
-    doc.segments.push_back(std::move(s));
+    (hidden ? doc.hidden : doc.segments).push_back(std::move(s));
   }
 };
 
@@ -364,6 +385,9 @@ MapDoc read_map(const std::string& json_text, const vismap::Scene& scene, Failur
   boxes.clear();
   for (const MapSegment& s : doc.segments) boxes.push_back(s.box);
   doc.segment_grid.build(boxes);
+  boxes.clear();
+  for (const MapSegment& s : doc.hidden) boxes.push_back(s.box);
+  doc.hidden_grid.build(boxes);
   auto& v = doc.vertices;
   for (const MapRegion& r : doc.regions) {
     v.insert(v.end(), r.outer.begin(), r.outer.end());

@@ -36,7 +36,10 @@ struct MapDoc {
   std::array<std::array<mpq_class, 4>, 4> m;
   std::vector<MapRegion> regions;
   std::vector<MapSegment> segments;
+  bool has_hidden = false;                  // the map has "hidden" (hidden lines were asked for)
+  std::vector<MapSegment> hidden;
   BoxGrid region_grid, segment_grid;        // over the outer rings' and segments' boxes
+  BoxGrid hidden_grid;                      // over the hidden segments' boxes
   std::vector<P2> vertices;                 // every ring vertex and segment end, by (x, y), unique
 };
 

@@ -1,0 +1,368 @@
+// Hidden lines, exactly (spec: "hidden"). A point of a drawn edge piece or
+// intersection line is hidden where it is not visible and no visible segment
+// lies over it. The visible map already says where lines are visible: a visible
+// line is drawn as a segment, unless the first visible line there is a smooth
+// seam that is not drawn. So on each screen line (the pieces and segments that
+// are collinear, grouped exactly), a stretch of a piece is hidden where no
+// segment covers it, except where an undrawn seam lies on it too: there the
+// piece's own visibility is decided, from the faces around it. Coinciding hidden
+// pieces give one segment, of the first in the order (depth, face index), and
+// stretches of one kind and faces list are joined into maximal segments.
+#include "engine/hidden_lines.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "engine/engine_run.h"
+#include "engine/franklin_grid.h"
+#include "engine/screen_scene.h"
+
+namespace vismap::engine {
+VISMAP_KERNEL_BEGIN
+namespace {
+
+// A uniform grid over the screen boxes of the facets that hide (not edge-on, in
+// front of the near plane): the facets that may hold a point or cross a stretch.
+// Doubles only choose cells: the boxes contain the exact projections.
+class FacetGrid {
+ public:
+  explicit FacetGrid(const std::vector<Facet>& facets) {
+    CGAL::Bbox_2 all;
+    for (std::size_t fi = 0; fi < facets.size(); ++fi)
+      if (hides(facets[fi])) {
+        all += facets[fi].box;
+        members_.push_back(static_cast<int>(fi));
+      }
+    x0_ = all.xmin();
+    y0_ = all.ymin();
+    n_ = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(members_.size()))), 1, 1024);
+    w_ = (all.xmax() - x0_) / n_;
+    h_ = (all.ymax() - y0_) / n_;
+    cells_.resize(static_cast<std::size_t>(n_) * n_);
+    for (int fi : members_) {
+      const Range r = range(facets[static_cast<std::size_t>(fi)].box);
+      for (int iy = r.y0; iy <= r.y1; ++iy)
+        for (int ix = r.x0; ix <= r.x1; ++ix) cells_[static_cast<std::size_t>(iy) * n_ + ix].push_back(fi);
+    }
+  }
+  static bool hides(const Facet& f) { return !f.v.empty() && f.facing != Facing::EdgeOn; }
+
+  struct Range {
+    int x0, y0, x1, y1;
+  };
+  Range range(const CGAL::Bbox_2& b) const {
+    return {cell(b.xmin(), x0_, w_), cell(b.ymin(), y0_, h_), cell(b.xmax(), x0_, w_), cell(b.ymax(), y0_, h_)};
+  }
+  int side() const { return n_; }
+  const std::vector<int>& at(int ix, int iy) const { return cells_[static_cast<std::size_t>(iy) * n_ + ix]; }
+  // The facets listed in the cells a box meets, each once, in index order.
+  std::vector<int> near(const CGAL::Bbox_2& b) const {
+    std::vector<int> out;
+    const Range r = range(b);
+    for (int iy = r.y0; iy <= r.y1; ++iy)
+      for (int ix = r.x0; ix <= r.x1; ++ix) out.insert(out.end(), at(ix, iy).begin(), at(ix, iy).end());
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
+ private:
+  int cell(double v, double lo, double size) const {
+    if (!(size > 0)) return 0;
+    return std::clamp(static_cast<int>(std::floor((v - lo) / size)), 0, n_ - 1);
+  }
+  std::vector<int> members_;
+  std::vector<std::vector<int>> cells_;
+  double x0_ = 0, y0_ = 0, w_ = 0, h_ = 0;
+  int n_ = 1;
+};
+
+// Faces that pierce each other, all of them (hidden ones too): an intersection
+// line for every pair of facets of different faces that cross strictly inside
+// both projections, as the engines find the visible ones. Each pair is tested
+// in one cell, the first that both boxes reach; lines in the order of their pairs.
+void add_all_intersection_lines(ScreenScene& ss, const FacetGrid& grid) {
+  struct Crossing {
+    int fa, fb;
+    P2 p, q;
+  };
+  std::vector<Crossing> found;
+  for (int iy = 0; iy < grid.side(); ++iy)
+    for (int ix = 0; ix < grid.side(); ++ix) {
+      const std::vector<int>& in = grid.at(ix, iy);
+      for (std::size_t i = 0; i < in.size(); ++i)
+        for (std::size_t j = i + 1; j < in.size(); ++j) {
+          const int fa = std::min(in[i], in[j]), fb = std::max(in[i], in[j]);
+          const Facet &A = ss.facets[static_cast<std::size_t>(fa)], &B = ss.facets[static_cast<std::size_t>(fb)];
+          if (A.face == B.face || !CGAL::do_overlap(A.box, B.box) || A.zhi < B.zlo || B.zhi < A.zlo) continue;
+          const FacetGrid::Range ra = grid.range(A.box), rb = grid.range(B.box);
+          if (std::max(ra.x0, rb.x0) != ix || std::max(ra.y0, rb.y0) != iy || share_an_edge(A, B)) continue;
+          P2 p, q;
+          if (intersection_segment(A, B, ss.world, p, q)) found.push_back(Crossing{fa, fb, p, q});
+        }
+    }
+  std::sort(found.begin(), found.end(),
+            [](const Crossing& x, const Crossing& y) { return std::pair(x.fa, x.fb) < std::pair(y.fa, y.fb); });
+  std::deque<P3>& line_ends = ss.ends.emplace_back();
+  for (const Crossing& c : found) {
+    const Facet &A = ss.facets[static_cast<std::size_t>(c.fa)], &B = ss.facets[static_cast<std::size_t>(c.fb)];
+    ss.curves.push_back(
+        intersection_curve(P3(c.p, A.depth_at(c.p)), P3(c.q, A.depth_at(c.q)), c.fa, c.fb, A.face, B.face, line_ends));
+  }
+}
+
+// What lies on one screen line: a drawn piece (a candidate hidden line), an
+// undrawn smooth seam, or a visible segment of the map.
+enum class Role : std::uint8_t { Drawn, Seam, Segment };
+struct Item {
+  P2 lo, hi;      // lo < hi, lexicographically (so: in order along the line)
+  int curve;      // the curve (-1 for a segment)
+  Role role;
+};
+
+Item item(const P2& a, const P2& b, int curve, Role role) {
+  if (CGAL::compare_xy(a, b) == CGAL::LARGER) return Item{b, a, curve, role};
+  return Item{a, b, curve, role};
+}
+
+// The order of screen lines: by slope (vertical last), then parallel lines by side.
+CGAL::Comparison_result compare_lines(const Item& a, const Item& b) {
+  const CGAL::Comparison_result slope = K().compare_slope_2_object()(a.lo, a.hi, b.lo, b.hi);
+  if (slope != CGAL::EQUAL) return slope;
+  const CGAL::Orientation side = CGAL::orientation(a.lo, a.hi, b.lo);
+  return side == CGAL::LEFT_TURN ? CGAL::SMALLER : side == CGAL::RIGHT_TURN ? CGAL::LARGER : CGAL::EQUAL;
+}
+
+// Whether a curve's piece is visible, where an undrawn seam lies over it (the
+// one case the map's segments do not answer): by the spec's rule, no face but
+// its own holding the point inside its projection and before it in the order
+// (depth, face index).
+class Visibility {
+ public:
+  Visibility(const ScreenScene& ss, const FacetGrid& grid) : ss_(ss), grid_(grid) {}
+
+  bool visible(const Curve& c, const P2& p) const {
+    const FT depth = depth_on(c, p);
+    for (int fi : grid_.near(CGAL::Bbox_2(approx_x(p).inf(), approx_y(p).inf(), approx_x(p).sup(), approx_y(p).sup()))) {
+      const Facet& f = ss_.facets[static_cast<std::size_t>(fi)];
+      if (own(c, f) || !strictly_inside(f, p)) continue;
+      const CGAL::Comparison_result order = CGAL::compare(f.depth_at(p), depth);
+      if (order == CGAL::SMALLER || (order == CGAL::EQUAL && f.face < c.order_face)) return false;
+    }
+    return true;
+  }
+
+  // Points strictly between a and b on curve c where its visibility may change:
+  // where it crosses a facet's projected side or ends on one, and where it passes
+  // through a facet's plane.
+  void changes(const Curve& c, const P2& a, const P2& b, std::vector<P2>& out) const {
+    const CGAL::Bbox_2 box = a.bbox() + b.bbox();
+    const FT da = depth_on(c, a), db = depth_on(c, b);
+    for (int fi : grid_.near(box)) {
+      const Facet& f = ss_.facets[static_cast<std::size_t>(fi)];
+      if (own(c, f) || !CGAL::do_overlap(f.box, box)) continue;
+      const FT ga = f.depth_at(a) - da, gb = f.depth_at(b) - db;
+      if (CGAL::sign(ga) * CGAL::sign(gb) < 0) out.push_back(a + (ga / (ga - gb)) * (b - a));
+      for (std::size_t k = 0, n = f.v.size(); k < n; ++k) side_crossing(a, b, f.v[k].xy(), f.v[(k + 1) % n].xy(), out);
+    }
+  }
+
+ private:
+  static bool own(const Curve& c, const Facet& f) {
+    return std::find(c.faces.begin(), c.faces.end(), f.face) != c.faces.end();
+  }
+  // Where side u-v meets the open segment a-b: a proper crossing, or an end of
+  // the side on it.
+  static void side_crossing(const P2& a, const P2& b, const P2& u, const P2& v, std::vector<P2>& out) {
+    const CGAL::Orientation ou = CGAL::orientation(a, b, u), ov = CGAL::orientation(a, b, v);
+    auto strictly_between = [&](const P2& p) {
+      return CGAL::compare_xy(a, p) == CGAL::SMALLER && CGAL::compare_xy(p, b) == CGAL::SMALLER;
+    };
+    if (ou == CGAL::COLLINEAR || ov == CGAL::COLLINEAR) {
+      if (ou == CGAL::COLLINEAR && strictly_between(u)) out.push_back(u);
+      if (ov == CGAL::COLLINEAR && strictly_between(v)) out.push_back(v);
+      return;
+    }
+    if (ou == ov) return;
+    const CGAL::Orientation oa = CGAL::orientation(u, v, a), ob = CGAL::orientation(u, v, b);
+    if (oa == CGAL::COLLINEAR || ob == CGAL::COLLINEAR || oa == ob) return;
+    const V2 ab = b - a, uv = v - u, au = u - a;
+    const FT lambda = (au.x() * uv.y() - au.y() * uv.x()) / (ab.x() * uv.y() - ab.y() * uv.x());
+    out.push_back(a + lambda * ab);
+  }
+
+  const ScreenScene& ss_;
+  const FacetGrid& grid_;
+};
+
+// A stretch of hidden line on one screen line, of one curve's kind and faces.
+struct Run {
+  P2 lo, hi;
+  int curve;
+};
+
+void sort_points(std::vector<P2>& v) {
+  std::sort(v.begin(), v.end(), [](const P2& a, const P2& b) { return CGAL::compare_xy(a, b) == CGAL::SMALLER; });
+  v.erase(std::unique(v.begin(), v.end(), [](const P2& a, const P2& b) { return a == b; }), v.end());
+}
+
+// The hidden runs of one screen line, whose items are group (in any order), in
+// order along the line, appended to `out`.
+void hidden_on_line(const ScreenScene& ss, const std::vector<Item>& items, const std::vector<int>& group,
+                    const Visibility& vis, std::vector<Run>& out) {
+  std::vector<P2> ev;
+  for (int i : group) {
+    ev.push_back(items[static_cast<std::size_t>(i)].lo);
+    ev.push_back(items[static_cast<std::size_t>(i)].hi);
+  }
+  sort_points(ev);
+  auto at = [&](const P2& p) {
+    return static_cast<std::size_t>(
+        std::lower_bound(ev.begin(), ev.end(), p,
+                         [](const P2& a, const P2& b) { return CGAL::compare_xy(a, b) == CGAL::SMALLER; }) -
+        ev.begin());
+  };
+  // Per stretch between consecutive events: segments and seams over it, the drawn pieces on it.
+  const std::size_t m = ev.size() - 1;
+  std::vector<int> covered(m + 1, 0), seams(m + 1, 0);
+  std::vector<std::vector<int>> drawn(m);
+  for (int i : group) {
+    const Item& it = items[static_cast<std::size_t>(i)];
+    const std::size_t a = at(it.lo), b = at(it.hi);
+    if (it.role == Role::Drawn) {
+      for (std::size_t k = a; k < b; ++k) drawn[k].push_back(it.curve);
+    } else {
+      std::vector<int>& count = it.role == Role::Segment ? covered : seams;
+      ++count[a];
+      --count[b];
+    }
+  }
+  const bool along_x = CGAL::compare_x(ev.front(), ev.back()) != CGAL::EQUAL;
+  auto curve = [&](int c) -> const Curve& { return ss.curves[static_cast<std::size_t>(c)]; };
+  auto before = [&](int c, int d, const P2& p) {   // c first in (depth, face index) at p
+    const CGAL::Sign gap = depth_gap(curve(c), curve(d), p, along_x);
+    if (gap != CGAL::ZERO) return gap < 0;
+    if (curve(c).order_face != curve(d).order_face) return curve(c).order_face < curve(d).order_face;
+    return c < d;
+  };
+  auto same_line_kind = [&](int c, int d) { return curve(c).kind == curve(d).kind && curve(c).faces == curve(d).faces; };
+  int cover = 0, seam = 0;
+  bool open = false;   // the last run may go on
+  for (std::size_t k = 0; k < m; ++k) {
+    cover += covered[k];
+    seam += seams[k];
+    if (cover > 0 || drawn[k].empty()) { open = false; continue; }
+    std::vector<P2> cuts{ev[k], ev[k + 1]};
+    for (std::size_t i = 0; i < drawn[k].size(); ++i) {
+      for (std::size_t j = i + 1; j < drawn[k].size(); ++j) {
+        P2 x;
+        if (depth_crossing(curve(drawn[k][i]), curve(drawn[k][j]), ev[k], ev[k + 1], x)) cuts.push_back(x);
+      }
+      if (seam > 0) vis.changes(curve(drawn[k][i]), ev[k], ev[k + 1], cuts);
+    }
+    sort_points(cuts);
+    for (std::size_t s = 0; s + 1 < cuts.size(); ++s) {
+      const P2 mid = CGAL::midpoint(cuts[s], cuts[s + 1]);
+      int first = -1;
+      for (int c : drawn[k]) {
+        if (seam > 0 && vis.visible(curve(c), mid)) continue;
+        if (first < 0 || before(c, first, mid)) first = c;
+      }
+      if (first < 0) { open = false; continue; }
+      if (open && same_line_kind(out.back().curve, first)) out.back().hi = cuts[s + 1];
+      else out.push_back(Run{cuts[s], cuts[s + 1], first});
+      open = true;
+    }
+  }
+}
+
+// The runs of every screen line: items grouped by line (exactly), each group's
+// runs in order along it. A drawn piece alone on its line is hidden throughout.
+std::vector<Run> hidden_runs(const ScreenScene& ss, const std::vector<Item>& items, const Visibility& vis) {
+  std::vector<int> order(items.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    const CGAL::Comparison_result c = compare_lines(items[static_cast<std::size_t>(a)], items[static_cast<std::size_t>(b)]);
+    return c != CGAL::EQUAL ? c == CGAL::SMALLER : a < b;
+  });
+  std::vector<Run> runs;
+  std::vector<int> group;
+  for (std::size_t i = 0; i < order.size();) {
+    group.assign(1, order[i]);
+    std::size_t j = i + 1;
+    while (j < order.size() && compare_lines(items[static_cast<std::size_t>(order[i])],
+                                             items[static_cast<std::size_t>(order[j])]) == CGAL::EQUAL)
+      group.push_back(order[j++]);
+    i = j;
+    const Item& first = items[static_cast<std::size_t>(group[0])];
+    if (group.size() == 1) {
+      if (first.role == Role::Drawn) runs.push_back(Run{first.lo, first.hi, first.curve});
+      continue;
+    }
+    if (std::none_of(group.begin(), group.end(), [&](int g) { return items[static_cast<std::size_t>(g)].role == Role::Drawn; }))
+      continue;
+    hidden_on_line(ss, items, group, vis, runs);
+  }
+  return runs;
+}
+
+// The items: every drawn curve and undrawn seam, and the map's segments (scaled
+// to the screen scene's coordinates).
+std::vector<Item> line_items(const ScreenScene& ss, const VisibilityMap& map) {
+  std::vector<Item> items;
+  for (std::size_t i = 0; i < ss.curves.size(); ++i) {
+    const Curve& c = ss.curves[i];
+    if (c.faces.empty()) continue;   // (a near-plane cut: no edge)
+    if (c.drawn) items.push_back(item(c.s->xy(), c.t->xy(), static_cast<int>(i), Role::Drawn));
+    else if (c.kind == EdgeKind::Smooth) items.push_back(item(c.s->xy(), c.t->xy(), static_cast<int>(i), Role::Seam));
+  }
+  auto scaled = [&](const Point2& p) {
+    mpq_class x = p.x, y = p.y;
+    times_pow2(x, ss.scale_exp);
+    times_pow2(y, ss.scale_exp);
+    return P2(from_mpq(x), from_mpq(y));
+  };
+  for (const Segment& s : map.segments) items.push_back(item(scaled(map.at(s.from)), scaled(map.at(s.to)), -1, Role::Segment));
+  return items;
+}
+
+std::vector<HiddenSegment> hidden_segments(const ScreenScene& ss, const std::vector<Run>& runs) {
+  std::vector<HiddenSegment> out;
+  out.reserve(runs.size());
+  for (const Run& r : runs) {
+    const Curve& c = ss.curves[static_cast<std::size_t>(r.curve)];
+    HiddenSegment h{Point2{exact_x(r.lo), exact_y(r.lo)}, Point2{exact_x(r.hi), exact_y(r.hi)}, c.kind,
+                    std::vector<int>(c.faces.begin(), c.faces.end())};
+    for (Point2* p : {&h.from, &h.to}) {
+      unscale(p->x, ss.scale_exp);
+      unscale(p->y, ss.scale_exp);
+    }
+    out.push_back(std::move(h));
+  }
+  std::sort(out.begin(), out.end(), [](const HiddenSegment& a, const HiddenSegment& b) {
+    if (!(a.from == b.from)) return a.from < b.from;
+    return a.to < b.to;
+  });
+  return out;
+}
+
+}  // namespace
+VISMAP_KERNEL_END
+
+void add_hidden_lines(const Scene& scene, const View& view, const EngineOptions& options, VisibilityMap& map) {
+  PhaseClock clock;
+  // Every facet and edge piece, none culled: back faces hide too, and their edges count.
+  Stats scratch;
+  ScreenScene ss = make_screen_scene(scene, view, options, scratch, /*latent=*/false, /*cull=*/false);
+  const FacetGrid grid(ss.facets);
+  add_all_intersection_lines(ss, grid);
+  const Visibility vis(ss, grid);
+  const std::vector<Run> runs = hidden_runs(ss, line_items(ss, map), vis);
+  map.hidden = hidden_segments(ss, runs);
+  map.has_hidden = true;
+  map.stats.count("hidden_segments", static_cast<std::int64_t>(map.hidden.size()));
+  map.stats.time("hidden_lines", clock.lap());
+}
+
+}  // namespace vismap::engine
