@@ -176,6 +176,68 @@ INSTANTIATE_TEST_SUITE_P(Scenes, Random,
                                   std::to_string(std::get<1>(info.param));
                          });
 
+// ---- hidden lines: the checker refuses each way of getting them wrong ----------------
+
+// Two interpenetrating boxes seen obliquely: hidden edges of back faces, hidden
+// stretches of front ones, and hidden intersection lines.
+TEST(HiddenLines, CheckerRefusesEachMutation) {
+  const vismap::Scene scene = vismap::read_scene((fs::path(VISMAP_DATA_DIR) / "interpenetrating_boxes.off").string());
+  vismap::CameraSpec cam;
+  cam.dir = Vec3{-1, -2, -4};
+  const vismap::View view = vismap::make_view(cam, scene);
+  vismap::EngineOptions opt;
+  opt.hidden = true;
+  const vismap::VisibilityMap map = vismap::visibility_franklin(scene, view, opt);
+  ASSERT_GE(map.hidden.size(), 4u);
+  vismap_check::Options check;
+  expect_checked(scene, vismap::to_json(map), check, "the hidden lines as made");
+  auto sorted = [](std::vector<vismap::HiddenSegment>& h) {
+    std::sort(h.begin(), h.end(), [](const auto& a, const auto& b) {
+      return a.from < b.from || (a.from == b.from && a.to < b.to);
+    });
+  };
+  using Mutation = std::function<void(vismap::VisibilityMap&)>;
+  const std::vector<std::pair<std::string, Mutation>> mutations = {
+      {"a hidden segment dropped", [](vismap::VisibilityMap& m) { m.hidden.erase(m.hidden.begin() + 1); }},
+      {"a visible segment added as hidden",
+       [&](vismap::VisibilityMap& m) {
+         const vismap::Segment& s = m.segments[0];
+         m.hidden.push_back({m.at(s.from), m.at(s.to), s.kind, s.faces});
+         sorted(m.hidden);
+       }},
+      {"a wrong kind",
+       [](vismap::VisibilityMap& m) {
+         vismap::HiddenSegment& h = m.hidden[0];
+         h.kind = h.kind == vismap::EdgeKind::Border ? vismap::EdgeKind::Silhouette : vismap::EdgeKind::Border;
+         h.faces.resize(h.kind == vismap::EdgeKind::Border ? 1 : 2, h.faces[0] + 1);
+       }},
+      {"two overlapping",
+       [&](vismap::VisibilityMap& m) {
+         vismap::HiddenSegment h = m.hidden[0];
+         h.to = vismap::Point2{(h.from.x + h.to.x) / 2, (h.from.y + h.to.y) / 2};
+         m.hidden.push_back(h);
+         sorted(m.hidden);
+       }},
+      {"a segment split where nothing changes",
+       [&](vismap::VisibilityMap& m) {
+         vismap::HiddenSegment a = m.hidden[0], b = m.hidden[0];
+         a.to = b.from = vismap::Point2{(a.from.x + a.to.x) / 2, (a.from.y + a.to.y) / 2};
+         m.hidden[0] = a;
+         m.hidden.push_back(b);
+         sorted(m.hidden);
+       }},
+  };
+  for (const auto& [what, mutate] : mutations) {
+    vismap::VisibilityMap wrong = map;
+    mutate(wrong);
+    const vismap_check::Report r = vismap_check::check_map(scene, vismap::to_json(wrong), check);
+    EXPECT_FALSE(r.ok) << what << ": accepted";
+    bool named = false;
+    for (const std::string& f : r.failures) named = named || f.find("hidden") != std::string::npos;
+    EXPECT_TRUE(named) << what << ": refused, but not for its hidden lines";
+  }
+}
+
 // ---- the grid is scaffolding: any c gives the same map ------------------------------
 
 TEST(GridIndependence, SameMapForEveryGridConstant) {
