@@ -126,12 +126,40 @@ Item item(const P2& a, const P2& b, int curve, Role role) {
   return Item{a, b, curve, role};
 }
 
-// The order of screen lines: by slope (vertical last), then parallel lines by side.
-CGAL::Comparison_result compare_lines(const Item& a, const Item& b) {
-  const CGAL::Comparison_result slope = K().compare_slope_2_object()(a.lo, a.hi, b.lo, b.hi);
-  if (slope != CGAL::EQUAL) return slope;
-  const CGAL::Orientation side = CGAL::orientation(a.lo, a.hi, b.lo);
-  return side == CGAL::LEFT_TURN ? CGAL::SMALLER : side == CGAL::RIGHT_TURN ? CGAL::LARGER : CGAL::EQUAL;
+// Whether two items lie on one screen line, exactly.
+bool same_line(const Item& a, const Item& b) {
+  return CGAL::orientation(a.lo, a.hi, b.lo) == CGAL::COLLINEAR && CGAL::orientation(a.lo, a.hi, b.hi) == CGAL::COLLINEAR;
+}
+
+// Interval keys of an item's screen line that hold exact values equal for equal
+// lines: its direction (lo -> hi) over its L1 norm, y part, and its offset
+// x ny - y nx. Lines whose keys are apart are different, told on intervals.
+struct LineKey {
+  Interval slope, offset;
+};
+LineKey key_of(const Item& it) {
+  CGAL::Protect_FPU_rounding<true> upward;
+  const Interval x0 = approx_x(it.lo), y0 = approx_y(it.lo);
+  const Interval dx = approx_x(it.hi) - x0, dy = approx_y(it.hi) - y0;
+  const Interval norm = CGAL::abs(dx) + CGAL::abs(dy);
+  const Interval nx = dx / norm, ny = dy / norm;
+  return {ny, x0 * ny - y0 * nx};
+}
+
+// Splits idx[begin, end) into runs whose intervals (key(i)) overlap, one after
+// another (sorted by lower end; a run goes on while the next starts before the
+// run's highest upper end), calling f(begin, end) on each.
+template <class Key, class F>
+void overlapping_runs(std::vector<int>& idx, std::size_t begin, std::size_t end, Key&& key, F&& f) {
+  std::sort(idx.begin() + static_cast<std::ptrdiff_t>(begin), idx.begin() + static_cast<std::ptrdiff_t>(end),
+            [&](int a, int b) { return key(a).inf() < key(b).inf() || (key(a).inf() == key(b).inf() && a < b); });
+  for (std::size_t i = begin; i < end;) {
+    double hi = key(idx[i]).sup();
+    std::size_t j = i + 1;
+    while (j < end && !(key(idx[j]).inf() > hi)) hi = std::max(hi, key(idx[j++]).sup());
+    f(i, j);
+    i = j;
+  }
 }
 
 // Whether a curve's piece is visible, where an undrawn seam lies over it (the
@@ -277,33 +305,44 @@ void hidden_on_line(const ScreenScene& ss, const std::vector<Item>& items, const
   }
 }
 
-// The runs of every screen line: items grouped by line (exactly), each group's
-// runs in order along it. A drawn piece alone on its line is hidden throughout.
+// The runs of every screen line: items grouped by line, exactly, each group's
+// runs in order along it. Intervals of each line's slope and offset sort most
+// items apart first; exact tests only among items whose intervals overlap. A
+// drawn piece alone on its line is hidden throughout.
 std::vector<Run> hidden_runs(const ScreenScene& ss, const std::vector<Item>& items, const Visibility& vis) {
-  std::vector<int> order(items.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    const CGAL::Comparison_result c = compare_lines(items[static_cast<std::size_t>(a)], items[static_cast<std::size_t>(b)]);
-    return c != CGAL::EQUAL ? c == CGAL::SMALLER : a < b;
-  });
+  std::vector<LineKey> keys(items.size());
+  for (std::size_t i = 0; i < items.size(); ++i) keys[i] = key_of(items[i]);
+  auto at = [&](int i) -> const Item& { return items[static_cast<std::size_t>(i)]; };
   std::vector<Run> runs;
-  std::vector<int> group;
-  for (std::size_t i = 0; i < order.size();) {
-    group.assign(1, order[i]);
-    std::size_t j = i + 1;
-    while (j < order.size() && compare_lines(items[static_cast<std::size_t>(order[i])],
-                                             items[static_cast<std::size_t>(order[j])]) == CGAL::EQUAL)
-      group.push_back(order[j++]);
-    i = j;
-    const Item& first = items[static_cast<std::size_t>(group[0])];
+  auto on_line = [&](std::vector<int>& group) {
     if (group.size() == 1) {
-      if (first.role == Role::Drawn) runs.push_back(Run{first.lo, first.hi, first.curve});
-      continue;
+      if (at(group[0]).role == Role::Drawn) runs.push_back(Run{at(group[0]).lo, at(group[0]).hi, at(group[0]).curve});
+      return;
     }
-    if (std::none_of(group.begin(), group.end(), [&](int g) { return items[static_cast<std::size_t>(g)].role == Role::Drawn; }))
-      continue;
-    hidden_on_line(ss, items, group, vis, runs);
-  }
+    if (std::any_of(group.begin(), group.end(), [&](int g) { return at(g).role == Role::Drawn; }))
+      hidden_on_line(ss, items, group, vis, runs);
+  };
+  std::vector<int> idx(items.size()), group, rest;
+  std::iota(idx.begin(), idx.end(), 0);
+  auto slope = [&](int i) -> const Interval& { return keys[static_cast<std::size_t>(i)].slope; };
+  auto offset = [&](int i) -> const Interval& { return keys[static_cast<std::size_t>(i)].offset; };
+  overlapping_runs(idx, 0, idx.size(), slope, [&](std::size_t b, std::size_t e) {
+    overlapping_runs(idx, b, e, offset, [&](std::size_t b2, std::size_t e2) {
+      // The lines among these, exactly: each group, the items on its first item's line.
+      rest.assign(idx.begin() + static_cast<std::ptrdiff_t>(b2), idx.begin() + static_cast<std::ptrdiff_t>(e2));
+      while (!rest.empty()) {
+        const int first = rest[0];
+        group.assign(1, first);
+        std::size_t kept = 0;
+        for (std::size_t k = 1; k < rest.size(); ++k) {
+          if (same_line(at(first), at(rest[k]))) group.push_back(rest[k]);
+          else rest[kept++] = rest[k];
+        }
+        rest.resize(kept);
+        on_line(group);
+      }
+    });
+  });
   return runs;
 }
 
@@ -355,10 +394,15 @@ void add_hidden_lines(const Scene& scene, const View& view, const EngineOptions&
   // Every facet and edge piece, none culled: back faces hide too, and their edges count.
   Stats scratch;
   ScreenScene ss = make_screen_scene(scene, view, options, scratch, /*latent=*/false, /*cull=*/false);
+  map.stats.time("hidden_scene", clock.lap());
   const FacetGrid grid(ss.facets);
   add_all_intersection_lines(ss, grid);
+  map.stats.time("hidden_intersections", clock.lap());
   const Visibility vis(ss, grid);
-  const std::vector<Run> runs = hidden_runs(ss, line_items(ss, map), vis);
+  const std::vector<Item> items = line_items(ss, map);
+  map.stats.time("hidden_items", clock.lap());
+  const std::vector<Run> runs = hidden_runs(ss, items, vis);
+  map.stats.time("hidden_runs", clock.lap());
   map.hidden = hidden_segments(ss, runs);
   map.has_hidden = true;
   map.stats.count("hidden_segments", static_cast<std::int64_t>(map.hidden.size()));
