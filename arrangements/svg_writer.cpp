@@ -30,40 +30,26 @@ double shade(const Scene& scene, const View& view, int face) {
   return 0.3 + 0.65 * c;
 }
 
-// The page: the map's extent scaled to opt.size, with a margin; y up on the screen.
-struct Frame {
-  double x0 = 0, y0 = 0, k = 1, margin = 0, w = 0, h = 0;
-  explicit Frame(const VisibilityMap& map, const SvgOptions& opt) {
-    double xa = HUGE_VAL, ya = HUGE_VAL, xb = -HUGE_VAL, yb = -HUGE_VAL;
-    auto grow = [&](const Point2& p) {
-      double x = p.x.get_d(), y = p.y.get_d();
-      xa = std::min(xa, x); xb = std::max(xb, x);
-      ya = std::min(ya, y); yb = std::max(yb, y);
-    };
-    for (const auto& p : map.vertices) grow(p);   // (every vertex is on an outer ring or a segment)
-    for (const auto& h : map.hidden) { grow(h.from); grow(h.to); }   // (may lie outside them)
-    if (xa > xb) { xa = ya = 0; xb = yb = 1; }
-    const double extent = std::max({xb - xa, yb - ya, 1e-300});
-    x0 = xa;
-    y0 = ya;
-    margin = 0.03 * opt.size;
-    k = (opt.size - 2 * margin) / extent;
-    w = (xb - xa) * k + 2 * margin;
-    h = (yb - ya) * k + 2 * margin;
-  }
-  std::string xy(const Point2& p) const {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.3f %.3f", margin + (p.x.get_d() - x0) * k, h - margin - (p.y.get_d() - y0) * k);
-    return buf;
-  }
-  std::string header() const {
-    char buf[160];
-    std::snprintf(buf, sizeof buf,
-                  "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.3f %.3f\">\n",
-                  std::ceil(w), std::ceil(h), w, h);
-    return std::string(buf) + "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  }
-};
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f", v);
+  return buf;
+}
+
+std::string xy(const std::array<double, 2>& p) { return num(p[0]) + " " + num(p[1]); }
+std::string xy(const Placement& at, const Point2& p) { return xy(at.at(p.x.get_d(), p.y.get_d())); }
+
+std::string header(const Placement& at) {
+  const std::string unit = at.mm ? "mm" : "";
+  const std::string w = at.mm ? num(at.width) : num(std::ceil(at.width)), h = at.mm ? num(at.height) : num(std::ceil(at.height));
+  return "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\" "
+         "width=\"" + w + unit + "\" height=\"" + h + unit + "\" viewBox=\"0 0 " + num(at.width) + " " + num(at.height) +
+         "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+}
+
+std::string layer(const std::string& id, const std::string& label, const std::string& attributes) {
+  return "<g inkscape:groupmode=\"layer\" id=\"" + id + "\" inkscape:label=\"" + label + "\" " + attributes + ">\n";
+}
 
 // The fill of a face's regions (and of its painter's fragments).
 std::string fill_of(const Scene& scene, const View& view, int face) {
@@ -75,50 +61,92 @@ std::string fill_of(const Scene& scene, const View& view, int face) {
 
 }  // namespace
 
+namespace {
+
+std::string regions_layer(const VisibilityMap& map, const Placement& at, const Scene& scene, const View& view) {
+  std::string out = layer("vismap-regions", "regions", "stroke=\"none\" fill-rule=\"evenodd\"");
+  for (const auto& r : map.regions) {
+    out += "<path fill=\"" + fill_of(scene, view, r.face) + "\" d=\"";
+    auto ring = [&](const Ring& r) {
+      for (std::size_t i = 0; i < r.size(); ++i) out += (i ? " L" : "M") + xy(at, map.at(r[i]));
+      out += " Z";
+    };
+    ring(r.outer);
+    for (const auto& hole : r.holes) { out += ' '; ring(hole); }
+    out += "\"/>\n";
+  }
+  return out + "</g>\n";
+}
+
+// A chain's path data: one polyline, or its dashes as sub-paths.
+std::string path_data(const Chain& c, const LineStyle& ls, const Placement& at, bool cut) {
+  std::string d;
+  if (cut && !ls.dash.empty()) {
+    std::vector<double> dash;
+    for (double v : ls.dash) dash.push_back(v * at.per_mm());
+    for (const auto& piece : dashed(c, dash))
+      for (std::size_t i = 0; i < piece.size(); ++i) d += (d.empty() ? "M" : i ? " L" : " M") + xy(piece[i]);
+    return d;
+  }
+  for (std::size_t i = 0; i < c.points.size(); ++i) d += (i ? " L" : "M") + xy(c.points[i]);
+  if (c.closed) d += " Z";
+  return d;
+}
+
+std::string stroke(const LineStyle& ls, const Placement& at, bool cut) {
+  std::string s = "stroke=\"" + ls.color + "\" stroke-width=\"" + num(ls.width * at.per_mm()) +
+                  "\" stroke-linecap=\"round\" stroke-linejoin=\"round\" fill=\"none\"";
+  if (!ls.dash.empty() && !cut) {
+    s += " stroke-dasharray=\"";
+    for (std::size_t i = 0; i < ls.dash.size(); ++i) s += (i ? " " : "") + num(ls.dash[i] * at.per_mm());
+    s += "\"";
+  }
+  return s;
+}
+
+std::string faces_text(const std::vector<int>& faces) {
+  std::string s;
+  for (std::size_t i = 0; i < faces.size(); ++i) s += (i ? " " : "") + std::to_string(faces[i]);
+  return s;
+}
+
+}  // namespace
+
 std::string to_svg(const VisibilityMap& map, const Scene& scene, const View& view, const SvgOptions& opt) {
-  const Frame frame(map, opt);
-  std::string out = frame.header();
-  if (!opt.lines_only) {
-    out += "<g stroke=\"none\" fill-rule=\"evenodd\">\n";
-    for (const auto& r : map.regions) {
-      out += "<path fill=\"" + fill_of(scene, view, r.face) + "\" d=\"";
-      auto ring = [&](const Ring& r) {
-        for (std::size_t i = 0; i < r.size(); ++i) out += (i ? " L" : "M") + frame.xy(map.at(r[i]));
-        out += " Z";
-      };
-      ring(r.outer);
-      for (const auto& hole : r.holes) { out += ' '; ring(hole); }
-      out += "\"/>\n";
+  return to_svg(map, make_drawing(map, opt.page, opt.provenance, opt.optimize_travel), scene, view, opt);
+}
+
+std::string to_svg(const VisibilityMap& map, const Drawing& drawing, const Scene& scene, const View& view,
+                   const SvgOptions& opt) {
+  const Placement& at = drawing.at;
+  std::string out = header(at);
+  if (opt.style.fills && !opt.lines_only) out += regions_layer(map, at, scene, view);
+  // One layer per class that has lines, in drawing order (hidden first, under the rest).
+  for (std::size_t k = 0; k < kLineClasses; ++k) {
+    const auto cls = static_cast<LineClass>(k);
+    const LineStyle& ls = opt.style.line[k];
+    bool any = false;
+    for (const Chain& c : drawing.chains) {
+      if (c.cls != cls) continue;
+      if (!any) out += layer(std::string("vismap-") + class_name(cls), class_name(cls), stroke(ls, at, opt.style.cut_dashes));
+      any = true;
+      out += "<path d=\"" + path_data(c, ls, at, opt.style.cut_dashes) + "\"";
+      if (opt.provenance) out += std::string(" data-kind=\"") + to_string(c.kind) + "\" data-faces=\"" + faces_text(c.faces) + "\"";
+      out += "/>\n";
     }
-    out += "</g>\n";
+    if (any) out += "</g>\n";
   }
-  char buf[200];
-  const double width = std::max(0.5, opt.size / 1000);
-  if (!map.hidden.empty()) {   // under the visible lines: thin, dashed
-    std::snprintf(buf, sizeof buf,
-                  "<g stroke=\"black\" stroke-width=\"%.3f\" stroke-dasharray=\"%.3f %.3f\" fill=\"none\">\n",
-                  width / 2, 4 * width, 2 * width);
-    out += buf;
-    for (const auto& h : map.hidden) out += "<path d=\"M" + frame.xy(h.from) + " L" + frame.xy(h.to) + "\"/>\n";
-    out += "</g>\n";
-  }
-  std::snprintf(buf, sizeof buf, "<g stroke=\"black\" stroke-width=\"%.3f\" stroke-linecap=\"round\" fill=\"none\">\n",
-                width);
-  out += buf;
-  for (const auto& s : map.segments)
-    out += "<path d=\"M" + frame.xy(map.at(s.from)) + " L" + frame.xy(map.at(s.to)) + "\"/>\n";
-  out += "</g>\n</svg>\n";
-  return out;
+  return out + "</svg>\n";
 }
 
 std::string to_painter_svg(const std::vector<PaintedFragment>& fragments, const VisibilityMap& map,
                            const Scene& scene, const View& view, const SvgOptions& opt) {
-  const Frame frame(map, opt);
-  std::string out = frame.header();
+  const Placement at = place(map, opt.page);
+  std::string out = header(at);
   out += "<g stroke=\"none\">\n";
   for (const PaintedFragment& f : fragments) {   // in drawing order: later ones paint over
     out += "<path fill=\"" + fill_of(scene, view, f.face) + "\" d=\"";
-    for (std::size_t i = 0; i < f.polygon.size(); ++i) out += (i ? " L" : "M") + frame.xy(f.polygon[i]);
+    for (std::size_t i = 0; i < f.polygon.size(); ++i) out += (i ? " L" : "M") + xy(at, f.polygon[i]);
     out += " Z\"/>\n";
   }
   out += "</g>\n</svg>\n";

@@ -1,8 +1,12 @@
-// The map as an SVG drawing: regions filled with a flat shade from their face's
-// normal, visible lines stroked. Coordinates are rounded to doubles only here.
+// The map as an SVG drawing (arrangements/drawing.h): regions filled with a
+// flat shade from their face's normal (in the styles that fill), then one
+// Inkscape layer per line class, each chain of lines one <path>. On a page the
+// units are mm (width="210mm", viewBox in mm): printers and plotters draw it at
+// true size. Coordinates are rounded to doubles only here.
 #pragma once
 #include <string>
 
+#include "arrangements/drawing.h"
 #include "arrangements/visibility_map.h"
 #include "engine/camera.h"
 #include "engine/scene.h"
@@ -11,11 +15,17 @@
 namespace vismap {
 
 struct SvgOptions {
-  bool lines_only = false;   // a pure hidden-line drawing
-  double size = 800;         // the longer side of the page, in px
+  bool lines_only = false;     // no fills, whatever the style
+  bool provenance = false;     // data-kind and data-faces on each path (chains then keep one kind and faces)
+  bool optimize_travel = false;
+  DrawingStyle style = shaded_style();
+  PageOptions page;
 };
 
 std::string to_svg(const VisibilityMap& map, const Scene& scene, const View& view, const SvgOptions& opt);
+// The same from a drawing already made (make_drawing with opt.page, opt.provenance).
+std::string to_svg(const VisibilityMap& map, const Drawing& drawing, const Scene& scene, const View& view,
+                   const SvgOptions& opt);
 
 // Newell's painter's drawing: the fragments filled one after another in drawing
 // order (back to front), each with its face's shade, on the same page as

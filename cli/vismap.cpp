@@ -1,5 +1,6 @@
 // vismap: exact visibility maps from mesh files.
 //   read scene -> camera -> engine -> JSON / SVG, each output written whole or not at all.
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "arrangements/atomic_file.h"
+#include "arrangements/dxf_writer.h"
 #include "arrangements/json_writer.h"
 #include "arrangements/svg_writer.h"
 #include "engine/camera.h"
@@ -20,6 +22,17 @@
 
 namespace {
 
+// The drawing's format from its file name: "svg" (also standard output and
+// names without an extension), "dxf", or "" for another extension.
+std::string drawing_format(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  const auto dot = path.find_last_of('.');
+  if (path == "-" || dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "svg";
+  std::string ext = path.substr(dot + 1);
+  for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return ext == "svg" || ext == "dxf" ? ext : "";
+}
+
 const char* kHelp = R"(usage: vismap SCENE [options]
        vismap verify SCENE MAP.json [options]   (see 'vismap verify --help')
 
@@ -27,8 +40,19 @@ Computes the exact visibility map of a polygon scene (OFF, OBJ, STL, PLY) and
 writes it as exact JSON and/or an SVG drawing. SCENE "-" is standard input.
 
 outputs (files are written whole or not at all; "-" is standard output):
-  -o, --svg FILE       SVG drawing: visible regions shaded, visible lines stroked
+  -o, --svg FILE       the drawing: SVG (visible regions shaded, visible lines
+                       stroked), or DXF for CAD when FILE ends in .dxf
   --lines-only         SVG without filled regions (a hidden-line drawing)
+  --style S            shaded (default: regions filled), technical (ISO 128:
+                       visible 0.5 mm, hidden 0.25 mm dashed, no fills) or
+                       plotter (a colour per layer, dashes cut into sub-paths)
+  --line CLASS:SPEC    restyle one class (hidden, smooth, intersection, crease,
+                       outline): SPEC is width=MM,color=C,dash=ON/OFF or dash=none
+  --page P             a4, a3, letter or WxHmm: the SVG in mm at true size
+  --scale 1:N          paper mm per screen unit 1/N (default: fit the page)
+  --margin MM          page margin when fitting (default 10)
+  --optimize-travel    order the paths to shorten pen-up travel (reported)
+  --svg-data           data-kind and data-faces on every path
   --json FILE          the exact map (format: shared/spec/vismap-json.md)
   --no-regions         the JSON without its "regions" (only the segments: what a
                        lines-only drawing needs, computed faster)
@@ -104,7 +128,8 @@ int main(int argc, char** argv) {
   vismap::CameraSpec cam;
   vismap::EngineOptions eng;
   vismap::SvgOptions svg;
-  bool stats = false, no_regions = false;
+  bool stats = false, no_regions = false, style_given = false;
+  std::vector<std::string> line_specs;   // --line, applied over the style
   try {
     std::vector<std::string> args(argv + 1, argv + argc);
     for (std::size_t i = 0; i < args.size(); ++i) {
@@ -124,6 +149,22 @@ int main(int argc, char** argv) {
       }
       else if (a == "--json") json_path = value();
       else if (a == "--lines-only") svg.lines_only = true;
+      else if (a == "--style") {
+        const std::string& v = value();
+        if (!vismap::preset_style(v, svg.style)) throw Usage("--style expects shaded, technical or plotter, got '" + v + "'");
+        style_given = true;
+      } else if (a == "--line") line_specs.push_back(value());
+      else if (a == "--page") {
+        const std::string& v = value();
+        if (!vismap::parse_page(v, svg.page)) throw Usage("--page expects a4, a3, letter or WxHmm (e.g. 300x200mm), got '" + v + "'");
+      } else if (a == "--scale") {
+        const std::string& v = value();
+        if (!vismap::parse_scale(v, svg.page.scale)) throw Usage("--scale expects 1:N with N > 0, got '" + v + "'");
+      } else if (a == "--margin") {
+        svg.page.margin = parse_double(a, value());
+        if (!(svg.page.margin >= 0)) throw Usage("--margin must be 0 or more (mm)");
+      } else if (a == "--optimize-travel") svg.optimize_travel = true;
+      else if (a == "--svg-data") svg.provenance = true;
       else if (a == "--no-regions") no_regions = true;
       else if (a == "--dir") cam.dir = parse_vec(a, value());
       else if (a == "--eye") cam.eye = parse_vec(a, value());
@@ -158,6 +199,16 @@ int main(int argc, char** argv) {
       else throw Usage("more than one scene given: " + scene_path + ", " + a);
     }
     if (scene_path.empty()) throw Usage("no scene file given");
+    for (const std::string& spec : line_specs) {
+      std::string error;
+      if (!vismap::override_line_style(spec, svg.style, error)) throw Usage("--line " + error + ", got '" + spec + "'");
+    }
+    const bool drawing_options = style_given || !line_specs.empty() || svg.page.width > 0 || svg.page.scale > 0 ||
+                                 svg.optimize_travel || svg.provenance;
+    if (drawing_options && svg_path.empty()) throw Usage("--style, --line, --page, --scale, --optimize-travel and --svg-data apply to -o, which is not given");
+    if (svg.page.scale > 0 && svg.page.width == 0) throw Usage("--scale needs --page (the drawing's size on paper)");
+    if (!svg_path.empty() && drawing_format(svg_path).empty())
+      throw Usage("-o " + svg_path + ": the drawing is written as .svg or .dxf (PDF, EPS and PNG are not written yet)");
     if (no_regions && json_path.empty()) throw Usage("--no-regions applies to --json, which is not given");
     if (!svg_path.empty() && svg_path == json_path) throw Usage("--json and -o name the same file");
     if (!painter_path.empty() && eng.algorithm != vismap::Algorithm::Newell)
@@ -183,7 +234,8 @@ int main(int argc, char** argv) {
     }
     // Regions are computed only where an output shows them: a lines-only drawing
     // and a JSON without regions need the segments alone (the same segments).
-    eng.regions = (!json_path.empty() && !no_regions) || (!svg_path.empty() && !svg.lines_only) || !painter_path.empty() ||
+    eng.regions = (!json_path.empty() && !no_regions) || (!svg_path.empty() && !svg.lines_only && svg.style.fills) ||
+                  !painter_path.empty() ||
                   (json_path.empty() && svg_path.empty());
     std::vector<vismap::PaintedFragment> fragments;
     vismap::VisibilityMap map = eng.algorithm == vismap::Algorithm::Newell
@@ -201,7 +253,17 @@ int main(int argc, char** argv) {
     std::vector<vismap::StreamedOutput> outputs;
     const int threads = vismap::engine::thread_count(eng.threads, scene.faces.size());
     if (!json_path.empty()) outputs.push_back({json_path, [&](const auto& write) { vismap::write_json(map, write, threads); }});
-    if (!svg_path.empty()) outputs.push_back({svg_path, [&](const auto& write) { write(vismap::to_svg(map, scene, view, svg)); }});
+    vismap::Drawing drawing;
+    if (!svg_path.empty()) {
+      drawing = vismap::make_drawing(map, svg.page, svg.provenance, svg.optimize_travel);
+      if (svg.optimize_travel) {
+        const char* unit = drawing.at.mm ? "mm" : "px";
+        std::fprintf(stderr, "vismap: pen-up travel %.1f %s -> %.1f %s (%zu paths)\n", drawing.travel_before, unit,
+                     drawing.travel_after, unit, drawing.chains.size());
+      }
+      if (drawing_format(svg_path) == "dxf") outputs.push_back({svg_path, [&](const auto& write) { write(vismap::to_dxf(drawing)); }});
+      else outputs.push_back({svg_path, [&](const auto& write) { write(vismap::to_svg(map, drawing, scene, view, svg)); }});
+    }
     if (!painter_path.empty())
       outputs.push_back({painter_path, [&](const auto& write) { write(vismap::to_painter_svg(fragments, map, scene, view, svg)); }});
     // All or none; on several threads, the files are written while the rest is formatted.

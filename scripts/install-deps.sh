@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages vismap needs, only those missing.
 set -euo pipefail
-pkgs=(cmake g++ make libcgal-dev libgmp-dev libmpfr-dev libboost-dev libgtest-dev libbenchmark-dev libmimalloc-dev python3)
+pkgs=(cmake g++ make libcgal-dev libgmp-dev libmpfr-dev libboost-dev libgtest-dev libbenchmark-dev libmimalloc-dev python3
+      python3-ezdxf)   # (the tests read the DXF drawings back with it)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
