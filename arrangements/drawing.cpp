@@ -121,6 +121,54 @@ bool override_line_style(std::string_view spec, DrawingStyle& style, std::string
   return true;
 }
 
+// ---- shading --------------------------------------------------------------------------
+
+bool parse_shading(std::string_view text, Shading& out) {
+  std::vector<double> v;
+  while (!text.empty()) {
+    const auto comma = text.find(',');
+    double x;
+    if (!parse_number(text.substr(0, comma), x)) return false;
+    v.push_back(x);
+    text = comma == std::string_view::npos ? std::string_view{} : text.substr(comma + 1);
+  }
+  if (v.size() != 3 && v.size() != 5) return false;
+  if (std::any_of(v.begin(), v.end(), [](double x) { return x < 0; })) return false;
+  out.r = v[0];
+  out.n = v[1];
+  out.b = v[2];
+  if (v.size() == 5) {
+    out.s = v[3];
+    out.m = v[4];
+  }
+  return true;
+}
+
+std::array<int, 3> face_rgb(const Scene& scene, const View& view, int face, const Shading& sh) {
+  const auto& f = scene.faces[static_cast<std::size_t>(face)];
+  double nx = 0, ny = 0, nz = 0, cx = 0, cy = 0, cz = 0;
+  for (std::size_t i = 0; i < f.size(); ++i) {   // Newell's normal
+    const Vec3 &p = scene.vertices[f[i]], &q = scene.vertices[f[(i + 1) % f.size()]];
+    nx += (p.y - q.y) * (p.z + q.z);
+    ny += (p.z - q.z) * (p.x + q.x);
+    nz += (p.x - q.x) * (p.y + q.y);
+    cx += p.x; cy += p.y; cz += p.z;
+  }
+  double dx = view.m[2][0], dy = view.m[2][1], dz = view.m[2][2];   // the light at the eye
+  if (sh.light_given) {
+    dx = sh.light[0]; dy = sh.light[1]; dz = sh.light[2];
+  } else if (view.perspective) {
+    const double k = static_cast<double>(f.size());
+    dx = cx / k - view.eye.x; dy = cy / k - view.eye.y; dz = cz / k - view.eye.z;
+  }
+  const double nn = std::sqrt(nx * nx + ny * ny + nz * nz), dd = std::sqrt(dx * dx + dy * dy + dz * dz);
+  const double c = (nn > 0 && dd > 0) ? std::min(1.0, std::abs(nx * dx + ny * dy + nz * dz) / (nn * dd)) : 0;
+  const double sine = std::sqrt(std::max(0.0, 1 - c * c));
+  const double i = std::clamp(sh.r * std::pow(c, sh.n) + sh.b + sh.s * std::pow(sine, sh.m), 0.0, 1.0);
+  const int g = static_cast<int>(std::lround(255 * i));
+  return {g, g, std::min(255, g + 12)};
+}
+
 // ---- the page -----------------------------------------------------------------------
 
 bool parse_page(std::string_view text, PageOptions& page) {

@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "arrangements/visibility_map.h"
+#include "engine/camera.h"
+#include "engine/scene.h"
 
 namespace vismap {
 
@@ -19,6 +21,21 @@ const char* class_name(LineClass c);   // "hidden", "smooth", "intersection", "c
 bool parse_line_class(std::string_view name, LineClass& out);
 // Silhouettes and borders are the outline; every hidden line is hidden.
 LineClass class_of(EdgeKind kind, bool hidden);
+
+// The shade of a face's regions: Newell's intensity function (the seed paper's
+// I = r cos^n(a) + b, with the streak s sin^m(a)), a the angle between the face's
+// normal and the direction of the light, which is at the eye unless given (a
+// direction towards the light, in the world). Clamped to [0, 1]. The defaults
+// are a flat shade, brighter the more a face faces the light.
+struct Shading {
+  double r = 0.65, n = 1, b = 0.3, s = 0, m = 20;
+  bool light_given = false;
+  double light[3] = {0, 0, 0};
+};
+// "R,N,B" or "R,N,B,S,M"; false otherwise.
+bool parse_shading(std::string_view text, Shading& out);
+// The grey of face `face` (0-255 per channel, a little blue), seen through `view`.
+std::array<int, 3> face_rgb(const Scene& scene, const View& view, int face, const Shading& shading);
 
 // How one class is stroked. Lengths in mm on a page (on a pixel canvas, 1 mm is
 // 96/25.4 px, the CSS inch).
@@ -32,6 +49,7 @@ struct DrawingStyle {
   std::string name = "shaded";
   bool fills = true;          // regions filled with their face's shade
   bool cut_dashes = false;    // dashes drawn as real sub-paths (plotters and cutters ignore dash arrays)
+  Shading shading;
   std::array<LineStyle, kLineClasses> line;
 };
 // The default: "shaded".

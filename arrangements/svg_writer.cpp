@@ -9,27 +9,6 @@
 namespace vismap {
 namespace {
 
-// Grey level of a face: brighter the more it faces the viewer.
-double shade(const Scene& scene, const View& view, int face) {
-  const auto& f = scene.faces[face];
-  double nx = 0, ny = 0, nz = 0, cx = 0, cy = 0, cz = 0;
-  for (std::size_t i = 0; i < f.size(); ++i) {   // Newell's normal
-    const Vec3 &p = scene.vertices[f[i]], &q = scene.vertices[f[(i + 1) % f.size()]];
-    nx += (p.y - q.y) * (p.z + q.z);
-    ny += (p.z - q.z) * (p.x + q.x);
-    nz += (p.x - q.x) * (p.y + q.y);
-    cx += p.x; cy += p.y; cz += p.z;
-  }
-  double dx = view.m[2][0], dy = view.m[2][1], dz = view.m[2][2];
-  if (view.perspective) {
-    double k = static_cast<double>(f.size());
-    dx = cx / k - view.eye.x; dy = cy / k - view.eye.y; dz = cz / k - view.eye.z;
-  }
-  double nn = std::sqrt(nx * nx + ny * ny + nz * nz), dd = std::sqrt(dx * dx + dy * dy + dz * dz);
-  double c = (nn > 0 && dd > 0) ? std::abs(nx * dx + ny * dy + nz * dz) / (nn * dd) : 0;
-  return 0.3 + 0.65 * c;
-}
-
 std::string num(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3f", v);
@@ -52,10 +31,10 @@ std::string layer(const std::string& id, const std::string& label, const std::st
 }
 
 // The fill of a face's regions (and of its painter's fragments).
-std::string fill_of(const Scene& scene, const View& view, int face) {
-  int g = static_cast<int>(std::lround(255 * shade(scene, view, face)));
+std::string fill_of(const Scene& scene, const View& view, int face, const Shading& shading) {
+  const std::array<int, 3> c = face_rgb(scene, view, face, shading);
   char buf[48];
-  std::snprintf(buf, sizeof buf, "rgb(%d,%d,%d)", g, g, std::min(255, g + 12));
+  std::snprintf(buf, sizeof buf, "rgb(%d,%d,%d)", c[0], c[1], c[2]);
   return buf;
 }
 
@@ -63,10 +42,11 @@ std::string fill_of(const Scene& scene, const View& view, int face) {
 
 namespace {
 
-std::string regions_layer(const VisibilityMap& map, const Placement& at, const Scene& scene, const View& view) {
+std::string regions_layer(const VisibilityMap& map, const Placement& at, const Scene& scene, const View& view,
+                          const Shading& shading) {
   std::string out = layer("vismap-regions", "regions", "stroke=\"none\" fill-rule=\"evenodd\"");
   for (const auto& r : map.regions) {
-    out += "<path fill=\"" + fill_of(scene, view, r.face) + "\" d=\"";
+    out += "<path fill=\"" + fill_of(scene, view, r.face, shading) + "\" d=\"";
     auto ring = [&](const Ring& r) {
       for (std::size_t i = 0; i < r.size(); ++i) out += (i ? " L" : "M") + xy(at, map.at(r[i]));
       out += " Z";
@@ -120,7 +100,7 @@ std::string to_svg(const VisibilityMap& map, const Drawing& drawing, const Scene
                    const SvgOptions& opt) {
   const Placement& at = drawing.at;
   std::string out = header(at);
-  if (opt.style.fills && !opt.lines_only) out += regions_layer(map, at, scene, view);
+  if (opt.style.fills && !opt.lines_only) out += regions_layer(map, at, scene, view, opt.style.shading);
   // One layer per class that has lines, in drawing order (hidden first, under the rest).
   for (std::size_t k = 0; k < kLineClasses; ++k) {
     const auto cls = static_cast<LineClass>(k);
@@ -145,7 +125,7 @@ std::string to_painter_svg(const std::vector<PaintedFragment>& fragments, const 
   std::string out = header(at);
   out += "<g stroke=\"none\">\n";
   for (const PaintedFragment& f : fragments) {   // in drawing order: later ones paint over
-    out += "<path fill=\"" + fill_of(scene, view, f.face) + "\" d=\"";
+    out += "<path fill=\"" + fill_of(scene, view, f.face, opt.style.shading) + "\" d=\"";
     for (std::size_t i = 0; i < f.polygon.size(); ++i) out += (i ? " L" : "M") + xy(at, f.polygon[i]);
     out += " Z\"/>\n";
   }

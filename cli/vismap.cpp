@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "arrangements/atomic_file.h"
+#include "arrangements/cairo_writer.h"
 #include "arrangements/dxf_writer.h"
 #include "arrangements/json_writer.h"
 #include "arrangements/svg_writer.h"
@@ -23,14 +24,14 @@
 namespace {
 
 // The drawing's format from its file name: "svg" (also standard output and
-// names without an extension), "dxf", or "" for another extension.
+// names without an extension), "dxf", "pdf", "eps", "png", or "" for another.
 std::string drawing_format(const std::string& path) {
   const auto slash = path.find_last_of('/');
   const auto dot = path.find_last_of('.');
   if (path == "-" || dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "svg";
   std::string ext = path.substr(dot + 1);
   for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  return ext == "svg" || ext == "dxf" ? ext : "";
+  return ext == "svg" || ext == "dxf" || ext == "pdf" || ext == "eps" || ext == "png" ? ext : "";
 }
 
 const char* kHelp = R"(usage: vismap SCENE [options]
@@ -40,8 +41,9 @@ Computes the exact visibility map of a polygon scene (OFF, OBJ, STL, PLY) and
 writes it as exact JSON and/or an SVG drawing. SCENE "-" is standard input.
 
 outputs (files are written whole or not at all; "-" is standard output):
-  -o, --svg FILE       the drawing: SVG (visible regions shaded, visible lines
-                       stroked), or DXF for CAD when FILE ends in .dxf
+  -o, --svg FILE       the drawing, by FILE's extension: .svg (the default;
+                       regions shaded, lines stroked), .dxf (CAD), .pdf, .eps,
+                       .png (through cairo)
   --lines-only         SVG without filled regions (a hidden-line drawing)
   --style S            shaded (default: regions filled), technical (ISO 128:
                        visible 0.5 mm, hidden 0.25 mm dashed, no fills) or
@@ -53,6 +55,11 @@ outputs (files are written whole or not at all; "-" is standard output):
   --margin MM          page margin when fitting (default 10)
   --optimize-travel    order the paths to shorten pen-up travel (reported)
   --svg-data           data-kind and data-faces on every path
+  --shading R,N,B[,S,M]
+                       fills by Newell's I = R cos^N(a) + B + S sin^M(a), a the
+                       angle between a face's normal and the light (default
+                       0.65,1,0.3: a flat shade)
+  --light X,Y,Z        direction towards the light (default: at the eye)
   --json FILE          the exact map (format: shared/spec/vismap-json.md)
   --no-regions         the JSON without its "regions" (only the segments: what a
                        lines-only drawing needs, computed faster)
@@ -128,7 +135,8 @@ int main(int argc, char** argv) {
   vismap::CameraSpec cam;
   vismap::EngineOptions eng;
   vismap::SvgOptions svg;
-  bool stats = false, no_regions = false, style_given = false;
+  bool stats = false, no_regions = false, style_given = false, shading_given = false;
+  vismap::Shading shading;   // --shading, --light: applied over the style
   std::vector<std::string> line_specs;   // --line, applied over the style
   try {
     std::vector<std::string> args(argv + 1, argv + argc);
@@ -165,6 +173,18 @@ int main(int argc, char** argv) {
         if (!(svg.page.margin >= 0)) throw Usage("--margin must be 0 or more (mm)");
       } else if (a == "--optimize-travel") svg.optimize_travel = true;
       else if (a == "--svg-data") svg.provenance = true;
+      else if (a == "--shading") {
+        const std::string& v = value();
+        if (!vismap::parse_shading(v, shading)) throw Usage("--shading expects R,N,B or R,N,B,S,M (non-negative numbers), got '" + v + "'");
+        shading_given = true;
+      } else if (a == "--light") {
+        const vismap::Vec3 l = parse_vec(a, value());
+        if (l.x == 0 && l.y == 0 && l.z == 0) throw Usage("--light must not be 0,0,0");
+        shading.light_given = shading_given = true;
+        shading.light[0] = l.x;
+        shading.light[1] = l.y;
+        shading.light[2] = l.z;
+      }
       else if (a == "--no-regions") no_regions = true;
       else if (a == "--dir") cam.dir = parse_vec(a, value());
       else if (a == "--eye") cam.eye = parse_vec(a, value());
@@ -203,12 +223,17 @@ int main(int argc, char** argv) {
       std::string error;
       if (!vismap::override_line_style(spec, svg.style, error)) throw Usage("--line " + error + ", got '" + spec + "'");
     }
+    svg.style.shading = shading;
     const bool drawing_options = style_given || !line_specs.empty() || svg.page.width > 0 || svg.page.scale > 0 ||
-                                 svg.optimize_travel || svg.provenance;
-    if (drawing_options && svg_path.empty()) throw Usage("--style, --line, --page, --scale, --optimize-travel and --svg-data apply to -o, which is not given");
+                                 svg.optimize_travel || svg.provenance || shading_given;
+    if (drawing_options && svg_path.empty())
+      throw Usage("--style, --line, --page, --scale, --optimize-travel, --svg-data, --shading and --light apply to -o, which is not given");
     if (svg.page.scale > 0 && svg.page.width == 0) throw Usage("--scale needs --page (the drawing's size on paper)");
     if (!svg_path.empty() && drawing_format(svg_path).empty())
-      throw Usage("-o " + svg_path + ": the drawing is written as .svg or .dxf (PDF, EPS and PNG are not written yet)");
+      throw Usage("-o " + svg_path + ": the drawing is written as .svg, .dxf, .pdf, .eps or .png");
+    const std::string fmt = svg_path.empty() ? "" : drawing_format(svg_path);
+    if ((fmt == "pdf" || fmt == "eps" || fmt == "png") && !vismap::cairo_available())
+      throw Usage("-o " + svg_path + ": this build has no cairo (install libcairo2-dev and rebuild); use .svg or .dxf");
     if (no_regions && json_path.empty()) throw Usage("--no-regions applies to --json, which is not given");
     if (!svg_path.empty() && svg_path == json_path) throw Usage("--json and -o name the same file");
     if (!painter_path.empty() && eng.algorithm != vismap::Algorithm::Newell)
@@ -261,8 +286,12 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "vismap: pen-up travel %.1f %s -> %.1f %s (%zu paths)\n", drawing.travel_before, unit,
                      drawing.travel_after, unit, drawing.chains.size());
       }
-      if (drawing_format(svg_path) == "dxf") outputs.push_back({svg_path, [&](const auto& write) { write(vismap::to_dxf(drawing)); }});
-      else outputs.push_back({svg_path, [&](const auto& write) { write(vismap::to_svg(map, drawing, scene, view, svg)); }});
+      const std::string fmt = drawing_format(svg_path);
+      outputs.push_back({svg_path, [&, fmt](const auto& write) {
+                           if (fmt == "dxf") write(vismap::to_dxf(drawing));
+                           else if (fmt == "svg") write(vismap::to_svg(map, drawing, scene, view, svg));
+                           else write(vismap::to_cairo(map, drawing, scene, view, svg, fmt));
+                         }});
     }
     if (!painter_path.empty())
       outputs.push_back({painter_path, [&](const auto& write) { write(vismap::to_painter_svg(fragments, map, scene, view, svg)); }});

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian packages vismap needs, only those missing.
 set -euo pipefail
-pkgs=(cmake g++ make libcgal-dev libgmp-dev libmpfr-dev libboost-dev libgtest-dev libbenchmark-dev libmimalloc-dev python3
-      python3-ezdxf)   # (the tests read the DXF drawings back with it)
+pkgs=(cmake g++ make pkg-config libcgal-dev libgmp-dev libmpfr-dev libboost-dev libgtest-dev libbenchmark-dev
+      libmimalloc-dev libcairo2-dev python3
+      python3-ezdxf poppler-utils librsvg2-bin)   # (the tests read the drawings back with these)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <set>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -244,3 +246,94 @@ TEST(Page, SizesScalesAndStyles) {
 }
 
 }  // namespace
+
+#ifdef VISMAP_TEST_CAIRO
+#include <cairo.h>
+
+#include "arrangements/cairo_writer.h"
+
+namespace {
+
+struct Raster {
+  int w = 0, h = 0;
+  std::vector<std::array<int, 3>> px;
+  const std::array<int, 3>& at(int x, int y) const { return px[static_cast<std::size_t>(y) * w + x]; }
+};
+
+Raster read_png(const fs::path& file) {
+  Raster r;
+  cairo_surface_t* s = cairo_image_surface_create_from_png(file.c_str());
+  if (cairo_surface_status(s) == CAIRO_STATUS_SUCCESS) {
+    cairo_surface_flush(s);
+    r.w = cairo_image_surface_get_width(s);
+    r.h = cairo_image_surface_get_height(s);
+    const int stride = cairo_image_surface_get_stride(s);
+    const unsigned char* data = cairo_image_surface_get_data(s);
+    for (int y = 0; y < r.h; ++y)
+      for (int x = 0; x < r.w; ++x) {
+        std::uint32_t v;
+        std::memcpy(&v, data + y * stride + 4 * x, 4);
+        r.px.push_back({static_cast<int>((v >> 16) & 255), static_cast<int>((v >> 8) & 255), static_cast<int>(v & 255)});
+      }
+  }
+  cairo_surface_destroy(s);
+  return r;
+}
+
+// The share of pixels, away from lines (no dark pixel within 2 in either
+// raster), whose colours differ by more than a few levels.
+double disagreement(const Raster& a, const Raster& b) {
+  auto dark = [](const Raster& r, int x, int y) {
+    for (int dy = -2; dy <= 2; ++dy)
+      for (int dx = -2; dx <= 2; ++dx) {
+        const int u = std::clamp(x + dx, 0, r.w - 1), v = std::clamp(y + dy, 0, r.h - 1);
+        const auto& c = r.at(u, v);
+        if (c[0] + c[1] + c[2] < 3 * 100) return true;
+      }
+    return false;
+  };
+  std::size_t compared = 0, differ = 0;
+  for (int y = 0; y < std::min(a.h, b.h); ++y)
+    for (int x = 0; x < std::min(a.w, b.w); ++x) {
+      if (dark(a, x, y) || dark(b, x, y)) continue;
+      ++compared;
+      for (int c = 0; c < 3; ++c)
+        if (std::abs(a.at(x, y)[c] - b.at(x, y)[c]) > 6) { ++differ; break; }
+    }
+  return compared ? static_cast<double>(differ) / compared : 1;
+}
+
+bool have(const char* tool) { return std::system((std::string("command -v ") + tool + " >/dev/null 2>&1").c_str()) == 0; }
+
+TEST(Cairo, PngPdfAndSvgRastersAgreeAwayFromLines) {
+  if (!have("rsvg-convert") || !have("pdftoppm")) GTEST_SKIP() << "rsvg-convert or pdftoppm missing (scripts/install-deps.sh installs them)";
+  const Made m = make("interpenetrating_boxes.off", {-1, -2, -4});
+  vismap::SvgOptions opt;   // shaded: the fills are what is compared
+  const vismap::Drawing d = vismap::make_drawing(m.map, opt.page, false, false);
+  const fs::path dir = fs::temp_directory_path() / ("vismap_cairo_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "map.svg") << vismap::to_svg(m.map, d, m.scene, m.view, opt);
+  for (const char* f : {"png", "pdf", "eps"})
+    std::ofstream(dir / (std::string("map.") + f), std::ios::binary) << vismap::to_cairo(m.map, d, m.scene, m.view, opt, f);
+  const std::string eps = vismap_test::slurp(dir / "map.eps");
+  EXPECT_EQ(eps.rfind("%!PS-Adobe-3.0 EPSF-3.0", 0), 0u) << "not an EPS file";
+  const std::string q = "'" + dir.string() + "/";
+  ASSERT_EQ(std::system(("rsvg-convert -o " + q + "svg.png' " + q + "map.svg'").c_str()), 0);
+  ASSERT_EQ(std::system(("pdftoppm -png -r 96 -singlefile " + q + "map.pdf' " + q + "pdf'").c_str()), 0);
+  const Raster png = read_png(dir / "map.png"), svg = read_png(dir / "svg.png"), pdf = read_png(dir / "pdf.png");
+  ASSERT_GT(png.w, 100);
+  EXPECT_NEAR(svg.w, png.w, 1);
+  EXPECT_NEAR(svg.h, png.h, 1);
+  EXPECT_NEAR(pdf.w, png.w, 1);
+  EXPECT_NEAR(pdf.h, png.h, 1);
+  EXPECT_LT(disagreement(png, svg), 0.005) << "the PNG's fills differ from the SVG's";
+  EXPECT_LT(disagreement(pdf, svg), 0.005) << "the PDF's fills differ from the SVG's";
+  // The raster is not blank: the fills are there.
+  std::size_t grey = 0;
+  for (const auto& c : png.px) grey += c[0] < 250 && c[0] > 100;
+  EXPECT_GT(grey, png.px.size() / 10);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+#endif

@@ -162,7 +162,10 @@ TEST(Malformed, BadUsageIsStatusTwoAndWritesNothing) {
        {std::vector<std::string>{}, {scene, "--bogus"}, {scene, "--dir", "0,0"}, {scene, "--dir", "nan,0,1"},
         {scene, "--dir", "0,0,0"}, {scene, "--fov", "180", "--eye", "1,1,1"}, {scene, "--json"},
         {scene, "--format", "gltf"}, {scene, "--max-memory", "0"}, {scene, "--max-memory", "-5G"},
-        {scene, "--max-memory", "8Q"}, {scene, scene}}) {
+        {scene, "--max-memory", "8Q"}, {scene, scene}, {scene, "--style", "sketchy"}, {scene, "--line", "edges:width=1"},
+        {scene, "--line", "hidden:dash=2"}, {scene, "--page", "a5"}, {scene, "--scale", "1:50"},
+        {scene, "--scale", "1:0", "--page", "a4"}, {scene, "--margin", "-1"}, {scene, "--shading", "1,2"},
+        {scene, "--light", "0,0,0"}}) {
     std::vector<std::string> argv = {kBin};
     argv.insert(argv.end(), args.begin(), args.end());
     argv.insert(argv.end(), {"-o", out.file("out.svg")});
@@ -170,6 +173,32 @@ TEST(Malformed, BadUsageIsStatusTwoAndWritesNothing) {
     EXPECT_EQ(r.status, 2) << (args.empty() ? "" : args.back()) << "\n" << both(r);
     EXPECT_EQ(r.err.rfind("vismap: ", 0), 0u) << both(r);
     EXPECT_TRUE(out.names().empty());
+  }
+  // A drawing format that is not one, and drawing options with no drawing.
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{scene, "-o", out.file("out.gif")},
+        {scene, "--style", "technical", "--json", out.file("out.json")},
+        {scene, "--page", "a4", "--json", out.file("out.json")}}) {
+    std::vector<std::string> argv = {kBin};
+    argv.insert(argv.end(), args.begin(), args.end());
+    const Result r = vismap_test::run(argv, scratch.path());
+    EXPECT_EQ(r.status, 2) << args[1] << "\n" << both(r);
+    EXPECT_TRUE(out.names().empty());
+  }
+}
+
+// ---- drawings: the format by the file's extension ----------------------------------------
+
+TEST(Drawings, EachFormatByItsExtension) {
+  TempDir in("drawing_in"), out("drawing_out"), scratch("drawing_scratch");
+  const std::string scene = in.write("ok.off", kOff);
+  const std::vector<std::pair<std::string, std::string>> formats = {
+      {"svg", "<svg"}, {"dxf", "0\nSECTION\n"}, {"pdf", "%PDF-"}, {"eps", "%!PS-Adobe-3.0 EPSF"}, {"png", "\x89PNG"}};
+  for (const auto& [ext, magic] : formats) {
+    const std::string file = out.file("drawing." + ext);
+    const Result r = vismap_test::run({kBin, scene, "--hidden", "--style", "technical", "--page", "a4", "-o", file}, scratch.path());
+    ASSERT_EQ(r.status, 0) << ext << "\n" << both(r);
+    EXPECT_EQ(vismap_test::slurp(file).rfind(magic, 0), 0u) << ext << ": not the format its name says";
   }
 }
 
