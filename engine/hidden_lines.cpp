@@ -88,6 +88,9 @@ void add_all_intersection_lines(ScreenScene& ss, const FacetGrid& grid) {
     P2 p, q;
   };
   std::vector<Crossing> found;
+  std::vector<FacetGrid::Range> range(ss.facets.size());
+  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi)
+    if (FacetGrid::hides(ss.facets[fi])) range[fi] = grid.range(ss.facets[fi].box);
   for (int iy = 0; iy < grid.side(); ++iy)
     for (int ix = 0; ix < grid.side(); ++ix) {
       const std::vector<int>& in = grid.at(ix, iy);
@@ -96,7 +99,7 @@ void add_all_intersection_lines(ScreenScene& ss, const FacetGrid& grid) {
           const int fa = std::min(in[i], in[j]), fb = std::max(in[i], in[j]);
           const Facet &A = ss.facets[static_cast<std::size_t>(fa)], &B = ss.facets[static_cast<std::size_t>(fb)];
           if (A.face == B.face || !CGAL::do_overlap(A.box, B.box) || A.zhi < B.zlo || B.zhi < A.zlo) continue;
-          const FacetGrid::Range ra = grid.range(A.box), rb = grid.range(B.box);
+          const FacetGrid::Range &ra = range[static_cast<std::size_t>(fa)], &rb = range[static_cast<std::size_t>(fb)];
           if (std::max(ra.x0, rb.x0) != ix || std::max(ra.y0, rb.y0) != iy || share_an_edge(A, B)) continue;
           P2 p, q;
           if (intersection_segment(A, B, ss.world, p, q)) found.push_back(Crossing{fa, fb, p, q});
@@ -268,10 +271,14 @@ void hidden_on_line(const ScreenScene& ss, const std::vector<Item>& items, const
   }
   const bool along_x = CGAL::compare_x(ev.front(), ev.back()) != CGAL::EQUAL;
   auto curve = [&](int c) -> const Curve& { return ss.curves[static_cast<std::size_t>(c)]; };
-  auto before = [&](int c, int d, const P2& p) {   // c first in (depth, face index) at p
+  // c first in (depth, face index) at p; where both tie (one 3D line, one lowest
+  // face), their faces lists decide, lexicographically.
+  auto before = [&](int c, int d, const P2& p) {
     const CGAL::Sign gap = depth_gap(curve(c), curve(d), p, along_x);
     if (gap != CGAL::ZERO) return gap < 0;
-    if (curve(c).order_face != curve(d).order_face) return curve(c).order_face < curve(d).order_face;
+    const SmallInts &fc = curve(c).faces, &fd = curve(d).faces;
+    if (!std::equal(fc.begin(), fc.end(), fd.begin(), fd.end()))
+      return std::lexicographical_compare(fc.begin(), fc.end(), fd.begin(), fd.end());
     return c < d;
   };
   auto same_line_kind = [&](int c, int d) { return curve(c).kind == curve(d).kind && curve(c).faces == curve(d).faces; };

@@ -95,6 +95,16 @@ TEST_P(Corpus, CheckerAcceptsTheMapAndRunsAreReproducible) {
   const std::string hidden_json = slurp(with_hidden);
   EXPECT_NE(hidden_json.find("\"hidden\""), std::string::npos) << "--hidden wrote no hidden lines";
   EXPECT_EQ(without_hidden(hidden_json), without_hidden(json)) << "--hidden changed the rest of the map";
+  // The lines alone (--no-regions) with hidden lines: the same hidden list.
+  const fs::path lines_hidden = dir / (c.file + ".lines_hidden.json");
+  const std::string cmd2 = std::string(VISMAP_BIN) + " '" + scene.string() + "' " + c.args + " --hidden --no-regions --json '" +
+                           lines_hidden.string() + "'";
+  ASSERT_EQ(std::system(cmd2.c_str()), 0) << cmd2;
+  auto hidden_of = [](const std::string& j) {
+    const auto from = j.find("\"hidden\""), to = j.find("\"stats\"");
+    return from == std::string::npos ? std::string() : j.substr(from, to - from);
+  };
+  EXPECT_EQ(hidden_of(slurp(lines_hidden)), hidden_of(hidden_json)) << "--no-regions changed the hidden lines";
   vismap_check::Options opt;
   opt.smooth = c.args.find("--smooth") != std::string::npos;
   if (auto k = c.args.find("--crease "); k != std::string::npos) opt.crease_deg = std::stod(c.args.substr(k + 9));
