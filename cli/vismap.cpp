@@ -38,7 +38,8 @@ const char* kHelp = R"(usage: vismap SCENE [options]
        vismap verify SCENE MAP.json [options]   (see 'vismap verify --help')
 
 Computes the exact visibility map of a polygon scene (OFF, OBJ, STL, PLY) and
-writes it as exact JSON and/or an SVG drawing. SCENE "-" is standard input.
+writes it as exact JSON and/or a drawing (SVG, DXF, PDF, EPS, PNG). SCENE "-" is
+standard input.
 
 outputs (files are written whole or not at all; "-" is standard output):
   -o, --svg FILE       the drawing, by FILE's extension: .svg (the default;
