@@ -16,6 +16,7 @@
 
 #include "engine/engine_run.h"
 #include "engine/franklin_grid.h"
+#include "engine/parallel.h"
 #include "engine/screen_scene.h"
 
 namespace vismap::engine {
@@ -316,39 +317,58 @@ void hidden_on_line(const ScreenScene& ss, const std::vector<Item>& items, const
 // runs in order along it. Intervals of each line's slope and offset sort most
 // items apart first; exact tests only among items whose intervals overlap. A
 // drawn piece alone on its line is hidden throughout.
-std::vector<Run> hidden_runs(const ScreenScene& ss, const std::vector<Item>& items, const Visibility& vis) {
-  std::vector<LineKey> keys(items.size());
-  for (std::size_t i = 0; i < items.size(); ++i) keys[i] = key_of(items[i]);
-  auto at = [&](int i) -> const Item& { return items[static_cast<std::size_t>(i)]; };
-  std::vector<Run> runs;
-  auto on_line = [&](std::vector<int>& group) {
-    if (group.size() == 1) {
-      if (at(group[0]).role == Role::Drawn) runs.push_back(Run{at(group[0]).lo, at(group[0]).hi, at(group[0]).curve});
-      return;
-    }
-    if (std::any_of(group.begin(), group.end(), [&](int g) { return at(g).role == Role::Drawn; }))
-      hidden_on_line(ss, items, group, vis, runs);
-  };
-  std::vector<int> idx(items.size()), group, rest;
+// The clusters of items whose keys overlap in slope and then in offset (equal
+// lines always share one), as ranges of `idx`.
+std::vector<std::pair<std::size_t, std::size_t>> clusters(const std::vector<LineKey>& keys, std::vector<int>& idx) {
+  idx.resize(keys.size());
   std::iota(idx.begin(), idx.end(), 0);
   auto slope = [&](int i) -> const Interval& { return keys[static_cast<std::size_t>(i)].slope; };
   auto offset = [&](int i) -> const Interval& { return keys[static_cast<std::size_t>(i)].offset; };
+  std::vector<std::pair<std::size_t, std::size_t>> out;
   overlapping_runs(idx, 0, idx.size(), slope, [&](std::size_t b, std::size_t e) {
-    overlapping_runs(idx, b, e, offset, [&](std::size_t b2, std::size_t e2) {
-      // The lines among these, exactly: each group, the items on its first item's line.
-      rest.assign(idx.begin() + static_cast<std::ptrdiff_t>(b2), idx.begin() + static_cast<std::ptrdiff_t>(e2));
+    overlapping_runs(idx, b, e, offset, [&](std::size_t b2, std::size_t e2) { out.emplace_back(b2, e2); });
+  });
+  return out;
+}
+
+std::vector<Run> hidden_runs(const ScreenScene& ss, const std::vector<Item>& items, const Visibility& vis, int threads) {
+  std::vector<LineKey> keys(items.size());
+  parallel_chunks(static_cast<int>(items.size()), 4096, threads, [&](int, Chunk r) {
+    for (int i = r.begin; i < r.end; ++i) keys[static_cast<std::size_t>(i)] = key_of(items[static_cast<std::size_t>(i)]);
+  });
+  std::vector<int> idx;
+  const std::vector<std::pair<std::size_t, std::size_t>> parts = clusters(keys, idx);
+  auto at = [&](int i) -> const Item& { return items[static_cast<std::size_t>(i)]; };
+  // Chunks of clusters on the threads, their runs appended in cluster order.
+  std::vector<Run> runs;
+  const int n = static_cast<int>(parts.size()), size = 2048;
+  parallel_append(runs, chunk_count(n, size), threads, [&](int k, std::vector<Run>& out) {
+    std::vector<int> group, rest;
+    auto on_line = [&] {
+      if (group.size() == 1) {
+        if (at(group[0]).role == Role::Drawn) out.push_back(Run{at(group[0]).lo, at(group[0]).hi, at(group[0]).curve});
+        return;
+      }
+      if (std::any_of(group.begin(), group.end(), [&](int g) { return at(g).role == Role::Drawn; }))
+        hidden_on_line(ss, items, group, vis, out);
+    };
+    const Chunk r = chunk(k, n, size);
+    for (int c = r.begin; c < r.end; ++c) {
+      // The lines among a cluster, exactly: each group, the items on its first item's line.
+      const auto [b, e] = parts[static_cast<std::size_t>(c)];
+      rest.assign(idx.begin() + static_cast<std::ptrdiff_t>(b), idx.begin() + static_cast<std::ptrdiff_t>(e));
       while (!rest.empty()) {
         const int first = rest[0];
         group.assign(1, first);
         std::size_t kept = 0;
-        for (std::size_t k = 1; k < rest.size(); ++k) {
-          if (same_line(at(first), at(rest[k]))) group.push_back(rest[k]);
-          else rest[kept++] = rest[k];
+        for (std::size_t i = 1; i < rest.size(); ++i) {
+          if (same_line(at(first), at(rest[i]))) group.push_back(rest[i]);
+          else rest[kept++] = rest[i];
         }
         rest.resize(kept);
-        on_line(group);
+        on_line();
       }
-    });
+    }
   });
   return runs;
 }
@@ -373,23 +393,27 @@ std::vector<Item> line_items(const ScreenScene& ss, const VisibilityMap& map) {
   return items;
 }
 
-std::vector<HiddenSegment> hidden_segments(const ScreenScene& ss, const std::vector<Run>& runs) {
-  std::vector<HiddenSegment> out;
-  out.reserve(runs.size());
-  for (const Run& r : runs) {
-    const Curve& c = ss.curves[static_cast<std::size_t>(r.curve)];
-    HiddenSegment h{Point2{exact_x(r.lo), exact_y(r.lo)}, Point2{exact_x(r.hi), exact_y(r.hi)}, c.kind,
-                    std::vector<int>(c.faces.begin(), c.faces.end())};
-    for (Point2* p : {&h.from, &h.to}) {
-      unscale(p->x, ss.scale_exp);
-      unscale(p->y, ss.scale_exp);
+// The runs as the map's hidden segments: exact end points in the spec's
+// coordinates, sorted by (from, to). On the threads.
+std::vector<HiddenSegment> hidden_segments(const ScreenScene& ss, const std::vector<Run>& runs, int threads) {
+  std::vector<HiddenSegment> out(runs.size());
+  parallel_chunks(static_cast<int>(runs.size()), 1024, threads, [&](int, Chunk part) {
+    for (int i = part.begin; i < part.end; ++i) {
+      const Run& r = runs[static_cast<std::size_t>(i)];
+      const Curve& c = ss.curves[static_cast<std::size_t>(r.curve)];
+      HiddenSegment& h = out[static_cast<std::size_t>(i)];
+      h = HiddenSegment{Point2{exact_x(r.lo), exact_y(r.lo)}, Point2{exact_x(r.hi), exact_y(r.hi)}, c.kind,
+                        std::vector<int>(c.faces.begin(), c.faces.end())};
+      for (Point2* p : {&h.from, &h.to}) {
+        unscale(p->x, ss.scale_exp);
+        unscale(p->y, ss.scale_exp);
+      }
     }
-    out.push_back(std::move(h));
-  }
-  std::sort(out.begin(), out.end(), [](const HiddenSegment& a, const HiddenSegment& b) {
+  });
+  parallel_sort(out.begin(), out.end(), [](const HiddenSegment& a, const HiddenSegment& b) {
     if (!(a.from == b.from)) return a.from < b.from;
     return a.to < b.to;
-  });
+  }, threads);
   return out;
 }
 
@@ -398,6 +422,7 @@ VISMAP_KERNEL_END
 
 void add_hidden_lines(const Scene& scene, const View& view, const EngineOptions& options, VisibilityMap& map) {
   PhaseClock clock;
+  const int threads = thread_count(options.threads, scene.faces.size());
   // Every facet and edge piece, none culled: back faces hide too, and their edges count.
   Stats scratch;
   ScreenScene ss = make_screen_scene(scene, view, options, scratch, /*latent=*/false, /*cull=*/false);
@@ -408,9 +433,9 @@ void add_hidden_lines(const Scene& scene, const View& view, const EngineOptions&
   const Visibility vis(ss, grid);
   const std::vector<Item> items = line_items(ss, map);
   map.stats.time("hidden_items", clock.lap());
-  const std::vector<Run> runs = hidden_runs(ss, items, vis);
+  const std::vector<Run> runs = hidden_runs(ss, items, vis, threads);
   map.stats.time("hidden_runs", clock.lap());
-  map.hidden = hidden_segments(ss, runs);
+  map.hidden = hidden_segments(ss, runs, threads);
   map.has_hidden = true;
   map.stats.count("hidden_segments", static_cast<std::int64_t>(map.hidden.size()));
   map.stats.time("hidden_lines", clock.lap());
