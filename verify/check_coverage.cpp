@@ -3,6 +3,7 @@
 // anything over it may change, and every stretch is tested at its midpoint:
 // no visible piece, however short, goes unchecked.
 #include <algorithm>
+#include <functional>
 
 #include "verify/checks.h"
 #include "verify/local.h"
@@ -237,10 +238,9 @@ std::vector<std::pair<P2, P2>> crossing_stretches(const Piece& p, const Piece& r
   return out;
 }
 
-namespace {
-
-void intersections(Context& c) {
-  const auto& ps = c.sc.pieces;
+void for_each_crossing(const Screen& sc, const std::function<void(const std::vector<std::uint32_t>&, const Piece&,
+                                                                   const P2&, const P2&, const P2&)>& f) {
+  const auto& ps = sc.pieces;
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (ps[i].orient == 0) continue;
     for (std::size_t j = i + 1; j < ps.size(); ++j) {
@@ -249,21 +249,28 @@ void intersections(Context& c) {
       if (r.orient == 0 || r.face == p.face || !p.box.meets(r.box)) continue;
       const std::vector<std::uint32_t> faces{std::min(p.face, r.face), std::max(p.face, r.face)};
       P2 dir;
-      for (const auto& [a, b] : crossing_stretches(p, r, dir)) {
-        for_each_stretch(c, a, b, p.depth_at(a), p.depth_at(b), faces, [&](const P2& q, const mpq_class&) {
-          LineView lv = look_along(c.sc, q, dir);
-          if (!lv.clean) return;
-          if (c.opt.strict) return require_winner(c, q, lv);
-          const LineItem* mine = nullptr;
-          for (const LineItem& it : lv.items)
-            if (it.kind == Kind::Intersection && it.faces == faces) mine = &it;
-          if (!mine || !mine->visible || !mine->drawn) return;
-          require_drawn(c, q, lv, "the intersection of faces " + std::to_string(faces[0]) + " and " +
-                                      std::to_string(faces[1]));
-        });
-      }
+      for (const auto& [a, b] : crossing_stretches(p, r, dir)) f(faces, p, a, b, dir);
     }
   }
+}
+
+namespace {
+
+void intersections(Context& c) {
+  for_each_crossing(c.sc, [&](const std::vector<std::uint32_t>& faces, const Piece& p, const P2& a, const P2& b,
+                              const P2& dir) {
+    for_each_stretch(c, a, b, p.depth_at(a), p.depth_at(b), faces, [&](const P2& q, const mpq_class&) {
+      LineView lv = look_along(c.sc, q, dir);
+      if (!lv.clean) return;
+      if (c.opt.strict) return require_winner(c, q, lv);
+      const LineItem* mine = nullptr;
+      for (const LineItem& it : lv.items)
+        if (it.kind == Kind::Intersection && it.faces == faces) mine = &it;
+      if (!mine || !mine->visible || !mine->drawn) return;
+      require_drawn(c, q, lv, "the intersection of faces " + std::to_string(faces[0]) + " and " +
+                                  std::to_string(faces[1]));
+    });
+  });
 }
 
 }  // namespace

@@ -28,14 +28,7 @@ std::string name_of(const MapDoc& doc, std::size_t i) {
 }
 
 // Hidden segments whose closed extent holds q.
-std::vector<std::size_t> hidden_at(const MapDoc& doc, const P2& q) {
-  std::vector<std::size_t> out;
-  for (std::uint32_t i : doc.hidden_grid.near(q)) {
-    const MapSegment& s = doc.hidden[i];
-    if (s.box.contains(q) && on_segment(q, s.from, s.to)) out.push_back(i);
-  }
-  return out;
-}
+std::vector<std::size_t> hidden_at(const MapDoc& doc, const P2& q) { return segments_at(doc.hidden, doc.hidden_grid, q); }
 
 // The hidden lines at q first in the order (depth, face index): drawn lines
 // (edge pieces and intersection lines, not near-plane cuts) that are not
@@ -207,29 +200,19 @@ void cover_edges(Context& c) {
 }
 
 void cover_intersections(Context& c) {
-  const auto& ps = c.sc.pieces;
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    if (ps[i].orient == 0) continue;
-    for (std::size_t j = i + 1; j < ps.size(); ++j) {
-      const Piece& p = ps[i];
-      const Piece& r = ps[j];
-      if (r.orient == 0 || r.face == p.face || !p.box.meets(r.box)) continue;
-      const std::vector<std::uint32_t> faces{std::min(p.face, r.face), std::max(p.face, r.face)};
-      P2 dir;
-      for (const auto& [a, b] : crossing_stretches(p, r, dir)) {
-        for_each_stretch(c, a, b, p.depth_at(a), p.depth_at(b), [&](const P2& q, const mpq_class&) {
-          const LineView lv = look_along(c.sc, q, dir);
-          if (!lv.clean) return;
-          const LineItem* mine = nullptr;
-          for (const LineItem& it : lv.items)
-            if (it.kind == Kind::Intersection && it.faces == faces) mine = &it;
-          if (!mine || !mine->drawn || mine->visible) return;
-          require_hidden(c, q, lv,
-                         "the intersection of faces " + std::to_string(faces[0]) + " and " + std::to_string(faces[1]));
-        });
-      }
-    }
-  }
+  for_each_crossing(c.sc, [&](const std::vector<std::uint32_t>& faces, const Piece& p, const P2& a, const P2& b,
+                              const P2& dir) {
+    for_each_stretch(c, a, b, p.depth_at(a), p.depth_at(b), [&](const P2& q, const mpq_class&) {
+      const LineView lv = look_along(c.sc, q, dir);
+      if (!lv.clean) return;
+      const LineItem* mine = nullptr;
+      for (const LineItem& it : lv.items)
+        if (it.kind == Kind::Intersection && it.faces == faces) mine = &it;
+      if (!mine || !mine->drawn || mine->visible) return;
+      require_hidden(c, q, lv,
+                     "the intersection of faces " + std::to_string(faces[0]) + " and " + std::to_string(faces[1]));
+    });
+  });
 }
 
 struct P2Less {

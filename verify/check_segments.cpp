@@ -18,10 +18,10 @@ std::string describe(const std::vector<std::uint32_t>& faces, Kind k) {
   return std::string(kind_name(k)) + " [" + f + "]";
 }
 
-std::vector<std::size_t> segments_at(const MapDoc& doc, const P2& q) {
+std::vector<std::size_t> segments_at(const std::vector<MapSegment>& list, const BoxGrid& grid, const P2& q) {
   std::vector<std::size_t> out;
-  for (std::uint32_t i : doc.segment_grid.near(q)) {
-    const MapSegment& s = doc.segments[i];
+  for (std::uint32_t i : grid.near(q)) {
+    const MapSegment& s = list[i];
     if (s.box.contains(q) && on_segment(q, s.from, s.to)) out.push_back(i);
   }
   return out;

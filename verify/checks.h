@@ -1,5 +1,6 @@
 // The geometric checks of check_map, one file each; they share this context.
 #pragma once
+#include <functional>
 #include "verify/checker.h"
 #include "verify/failures.h"
 #include "verify/local.h"
@@ -25,14 +26,23 @@ void check_hidden(Context& c);     // 8: the hidden lines, where the map has the
 
 std::string describe(const std::vector<std::uint32_t>& faces, Kind k);   // "crease [3,4]"
 
-// Segments whose closed extent holds q.
-std::vector<std::size_t> segments_at(const MapDoc& doc, const P2& q);
+// Segments whose closed extent holds q: of `list` (over which `grid` is built),
+// or of the map's segments.
+std::vector<std::size_t> segments_at(const std::vector<MapSegment>& list, const BoxGrid& grid, const P2& q);
+inline std::vector<std::size_t> segments_at(const MapDoc& doc, const P2& q) {
+  return segments_at(doc.segments, doc.segment_grid, q);
+}
 
 // Why no visible drawn line is at a point (for messages), from its LineView.
 std::string why_nothing(const LineView& lv);
 
 // Interior sample parameters along a segment, simplest first (1/2, 1/3, 2/3, ...).
 std::vector<mpq_class> parameters();
+
+// Every crossing of two faces' pieces (not edge-on, boxes meeting): f(faces,
+// p, a, b, dir) for each stretch a-b of it inside both, p the first piece.
+void for_each_crossing(const Screen& sc, const std::function<void(const std::vector<std::uint32_t>& faces, const Piece& p,
+                                                                   const P2& a, const P2& b, const P2& dir)>& f);
 
 // The stretches of the line where the planes of pieces p and r meet that lie
 // inside both projections, as pairs of end points; `dir` is the line's direction.
