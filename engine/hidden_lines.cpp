@@ -11,6 +11,10 @@
 #include "engine/hidden_lines.h"
 
 #include <algorithm>
+#include <array>
+#include <unordered_map>
+#include <mutex>
+#include <memory>
 #include <cmath>
 #include <numeric>
 
@@ -79,32 +83,118 @@ class FacetGrid {
   int n_ = 1;
 };
 
+// The facets that may pierce each other, found in the world, where a mesh's
+// facets are of similar size whatever the view (on the screen a close-up's near
+// facets cover thousands of times more): a hash grid of cubes about a facet's
+// size, each facet listed in the cubes of its box.
+class WorldGrid {
+ public:
+  using Box = std::array<double, 6>;   // x0 y0 z0 x1 y1 z1
+  WorldGrid(const WorldFacets& wf, const std::vector<Vec3>& input, const std::vector<char>& listed) {
+    box_.resize(wf.facets.size());
+    std::vector<double> extent;
+    for (std::size_t fi = 0; fi < wf.facets.size(); ++fi) {
+      if (!listed[fi]) continue;
+      Box& b = box_[fi];
+      b = {HUGE_VAL, HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+      for (std::uint32_t id : wf.facets[fi].v) {
+        const Vec3& p = input[id];
+        const double c[3] = {p.x, p.y, p.z};
+        for (int a = 0; a < 3; ++a) {
+          b[a] = std::min(b[a], c[a]);
+          b[a + 3] = std::max(b[a + 3], c[a]);
+        }
+      }
+      extent.push_back(std::max({b[3] - b[0], b[4] - b[1], b[5] - b[2]}));
+    }
+    if (extent.empty()) return;
+    std::nth_element(extent.begin(), extent.begin() + static_cast<std::ptrdiff_t>(extent.size() / 2), extent.end());
+    size_ = extent[extent.size() / 2];
+    if (!(size_ > 0) || !std::isfinite(size_)) size_ = 1;
+    for (std::size_t fi = 0; fi < wf.facets.size(); ++fi) {
+      if (!listed[fi]) continue;
+      if (many_cells(box_[fi])) big_.push_back(static_cast<int>(fi));
+      else for_cells(box_[fi], [&](const Cube& c) { cells_[c].push_back(static_cast<int>(fi)); });
+    }
+  }
+  // Facets far larger than the median (a ground plane, a huge backdrop), in no
+  // cube: each is tested against every other listed facet instead.
+  const std::vector<int>& big() const { return big_; }
+  const Box& box(int fi) const { return box_[static_cast<std::size_t>(fi)]; }
+  static bool meet(const Box& a, const Box& b) {
+    return a[0] <= b[3] && b[0] <= a[3] && a[1] <= b[4] && b[1] <= a[4] && a[2] <= b[5] && b[2] <= a[5];
+  }
+  using Cube = std::array<std::int64_t, 3>;
+  struct CubeHash {
+    std::size_t operator()(const Cube& c) const {
+      std::uint64_t k = 0;
+      for (std::int64_t x : c) k = (k ^ static_cast<std::uint64_t>(x)) * 0x9E3779B97F4A7C15ull;
+      return static_cast<std::size_t>(k ^ (k >> 29));
+    }
+  };
+  // Whether `cube` is the first that both boxes reach (each pair tested once).
+  bool first_common(const Box& a, const Box& b, const Cube& cube) const {
+    return Cube{cell(std::max(a[0], b[0])), cell(std::max(a[1], b[1])), cell(std::max(a[2], b[2]))} == cube;
+  }
+  const std::unordered_map<Cube, std::vector<int>, CubeHash>& cells() const { return cells_; }
+
+ private:
+  std::int64_t cell(double v) const { return static_cast<std::int64_t>(std::floor(v / size_)); }
+  // More than 64 cubes, or cube indices beyond 2^62 (coordinates far larger than
+  // the facets: 1e300 against 1e-9).
+  bool many_cells(const Box& b) const {
+    double count = 1;
+    for (int a = 0; a < 3; ++a) {
+      const double lo = std::floor(b[a] / size_), hi = std::floor(b[a + 3] / size_);
+      if (!(std::abs(lo) < 0x1p62 && std::abs(hi) < 0x1p62)) return true;
+      count *= hi - lo + 1;
+    }
+    return count > 64;
+  }
+  template <class F>
+  void for_cells(const Box& b, F&& f) const {
+    for (std::int64_t x = cell(b[0]); x <= cell(b[3]); ++x)
+      for (std::int64_t y = cell(b[1]); y <= cell(b[4]); ++y)
+        for (std::int64_t z = cell(b[2]); z <= cell(b[5]); ++z) f(Cube{x, y, z});
+  }
+  std::vector<Box> box_;
+  std::vector<int> big_;
+  double size_ = 1;
+  std::unordered_map<Cube, std::vector<int>, CubeHash> cells_;
+};
+
 // Faces that pierce each other, all of them (hidden ones too): an intersection
 // line for every pair of facets of different faces that cross strictly inside
-// both projections, as the engines find the visible ones. Each pair is tested
-// in one cell, the first that both boxes reach; lines in the order of their pairs.
-void add_all_intersection_lines(ScreenScene& ss, const FacetGrid& grid) {
+// both projections, as the engines find the visible ones; lines in the order of
+// their pairs.
+void add_all_intersection_lines(ScreenScene& ss, const WorldFacets& wf) {
   struct Crossing {
     int fa, fb;
     P2 p, q;
   };
+  std::vector<char> listed(ss.facets.size());
+  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) listed[fi] = FacetGrid::hides(ss.facets[fi]);
+  const WorldGrid grid(wf, *ss.world, listed);
   std::vector<Crossing> found;
-  std::vector<FacetGrid::Range> range(ss.facets.size());
-  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi)
-    if (FacetGrid::hides(ss.facets[fi])) range[fi] = grid.range(ss.facets[fi].box);
-  for (int iy = 0; iy < grid.side(); ++iy)
-    for (int ix = 0; ix < grid.side(); ++ix) {
-      const std::vector<int>& in = grid.at(ix, iy);
-      for (std::size_t i = 0; i < in.size(); ++i)
-        for (std::size_t j = i + 1; j < in.size(); ++j) {
-          const int fa = std::min(in[i], in[j]), fb = std::max(in[i], in[j]);
-          const Facet &A = ss.facets[static_cast<std::size_t>(fa)], &B = ss.facets[static_cast<std::size_t>(fb)];
-          if (A.face == B.face || !CGAL::do_overlap(A.box, B.box) || A.zhi < B.zlo || B.zhi < A.zlo) continue;
-          const FacetGrid::Range &ra = range[static_cast<std::size_t>(fa)], &rb = range[static_cast<std::size_t>(fb)];
-          if (std::max(ra.x0, rb.x0) != ix || std::max(ra.y0, rb.y0) != iy || share_an_edge(A, B)) continue;
-          P2 p, q;
-          if (intersection_segment(A, B, ss.world, p, q)) found.push_back(Crossing{fa, fb, p, q});
-        }
+  auto test = [&](int fa, int fb) {   // (fa < fb)
+    const Facet &A = ss.facets[static_cast<std::size_t>(fa)], &B = ss.facets[static_cast<std::size_t>(fb)];
+    if (A.face == B.face || !WorldGrid::meet(grid.box(fa), grid.box(fb))) return;
+    if (!CGAL::do_overlap(A.box, B.box) || A.zhi < B.zlo || B.zhi < A.zlo || share_an_edge(A, B)) return;
+    P2 p, q;
+    if (intersection_segment(A, B, ss.world, p, q)) found.push_back(Crossing{fa, fb, p, q});
+  };
+  for (const auto& [key, in] : grid.cells())
+    for (std::size_t i = 0; i < in.size(); ++i)
+      for (std::size_t j = i + 1; j < in.size(); ++j) {
+        const int fa = std::min(in[i], in[j]), fb = std::max(in[i], in[j]);
+        if (grid.first_common(grid.box(fa), grid.box(fb), key)) test(fa, fb);
+      }
+  const std::vector<int>& big = grid.big();
+  for (int b : big)
+    for (std::size_t fi = 0; fi < listed.size(); ++fi) {
+      const int f = static_cast<int>(fi);
+      if (!listed[fi] || f == b || (std::binary_search(big.begin(), big.end(), f) && f < b)) continue;
+      test(std::min(b, f), std::max(b, f));
     }
   std::sort(found.begin(), found.end(),
             [](const Crossing& x, const Crossing& y) { return std::pair(x.fa, x.fb) < std::pair(y.fa, y.fb); });
@@ -172,11 +262,11 @@ void overlapping_runs(std::vector<int>& idx, std::size_t begin, std::size_t end,
 // (depth, face index).
 class Visibility {
  public:
-  Visibility(const ScreenScene& ss, const FacetGrid& grid) : ss_(ss), grid_(grid) {}
+  explicit Visibility(const ScreenScene& ss) : ss_(ss) {}
 
   bool visible(const Curve& c, const P2& p) const {
     const FT depth = depth_on(c, p);
-    for (int fi : grid_.near(CGAL::Bbox_2(approx_x(p).inf(), approx_y(p).inf(), approx_x(p).sup(), approx_y(p).sup()))) {
+    for (int fi : grid().near(CGAL::Bbox_2(approx_x(p).inf(), approx_y(p).inf(), approx_x(p).sup(), approx_y(p).sup()))) {
       const Facet& f = ss_.facets[static_cast<std::size_t>(fi)];
       if (own(c, f) || !strictly_inside(f, p)) continue;
       const CGAL::Comparison_result order = CGAL::compare(f.depth_at(p), depth);
@@ -191,7 +281,7 @@ class Visibility {
   void changes(const Curve& c, const P2& a, const P2& b, std::vector<P2>& out) const {
     const CGAL::Bbox_2 box = a.bbox() + b.bbox();
     const FT da = depth_on(c, a), db = depth_on(c, b);
-    for (int fi : grid_.near(box)) {
+    for (int fi : grid().near(box)) {
       const Facet& f = ss_.facets[static_cast<std::size_t>(fi)];
       if (own(c, f) || !CGAL::do_overlap(f.box, box)) continue;
       const FT ga = f.depth_at(a) - da, gb = f.depth_at(b) - db;
@@ -224,8 +314,15 @@ class Visibility {
     out.push_back(a + lambda * ab);
   }
 
+  // The grid of facets on the screen, made when first asked (most scenes never do).
+  const FacetGrid& grid() const {
+    std::call_once(made_, [&] { grid_ = std::make_unique<FacetGrid>(ss_.facets); });
+    return *grid_;
+  }
+
   const ScreenScene& ss_;
-  const FacetGrid& grid_;
+  mutable std::once_flag made_;
+  mutable std::unique_ptr<FacetGrid> grid_;
 };
 
 // A stretch of hidden line on one screen line, of one curve's kind and faces.
@@ -427,10 +524,9 @@ void add_hidden_lines(const Scene& scene, const View& view, const EngineOptions&
   Stats scratch;
   ScreenScene ss = make_screen_scene(scene, view, options, scratch, /*latent=*/false, /*cull=*/false);
   map.stats.time("hidden_scene", clock.lap());
-  const FacetGrid grid(ss.facets);
-  add_all_intersection_lines(ss, grid);
+  add_all_intersection_lines(ss, *world_facets_of(ss));
   map.stats.time("hidden_intersections", clock.lap());
-  const Visibility vis(ss, grid);
+  const Visibility vis(ss);
   const std::vector<Item> items = line_items(ss, map);
   map.stats.time("hidden_items", clock.lap());
   const std::vector<Run> runs = hidden_runs(ss, items, vis, threads);

@@ -652,8 +652,11 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Engine
     stats.count("curves_latent", static_cast<std::int64_t>(ss.latent_box.size()));
     if (!ss.latent_box.empty()) ss.maker = std::move(maker);   // (else freed now, as for a whole map)
   }
+  if (!cull) ss.maker = std::move(maker);   // (the hidden lines' pass reads the world facets)
   return ss;
 }
+
+const WorldFacets* world_facets_of(const ScreenScene& ss) { return ss.maker ? &ss.maker->wf : nullptr; }
 
 void make_latent_curves(ScreenScene& ss, const std::vector<char>& wanted, int threads) {
   std::vector<int> pick;

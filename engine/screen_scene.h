@@ -125,6 +125,10 @@ struct ScreenScene {
 ScreenScene make_screen_scene(const Scene& scene, const View& view, const EngineOptions& opt,
                               Stats& stats, bool latent = false, bool cull = true);
 
+// The world facets the screen facets were made from (index for index), where
+// the scene keeps them (latent curves, or made without culling); else null.
+const WorldFacets* world_facets_of(const ScreenScene& ss);
+
 // Makes the latent curves whose flag in `wanted` is set, appended to ss.curves in
 // latent order (as make_screen_scene would have made them); no curve is latent
 // after it. Chunks of them in parallel.
