@@ -266,9 +266,11 @@ class Visibility {
 
   bool visible(const Curve& c, const P2& p) const {
     const FT depth = depth_on(c, p);
-    for (int fi : grid().near(CGAL::Bbox_2(approx_x(p).inf(), approx_y(p).inf(), approx_x(p).sup(), approx_y(p).sup()))) {
+    const std::vector<int> near =
+        grid().near(CGAL::Bbox_2(approx_x(p).inf(), approx_y(p).inf(), approx_x(p).sup(), approx_y(p).sup()));
+    for (int fi : near) {
       const Facet& f = ss_.facets[static_cast<std::size_t>(fi)];
-      if (own(c, f) || !strictly_inside(f, p)) continue;
+      if (own(c, f) || !(strictly_inside(f, p) || across_diagonal(f, near, p))) continue;
       const CGAL::Comparison_result order = CGAL::compare(f.depth_at(p), depth);
       if (order == CGAL::SMALLER || (order == CGAL::EQUAL && f.face < c.order_face)) return false;
     }
@@ -291,6 +293,31 @@ class Visibility {
   }
 
  private:
+  // Whether p lies inside a side of f that another facet of f's face shares (a
+  // diagonal inside the polygon: a fan's, or an ear clipping's) and the two lie on
+  // either side of it on the screen: then p is inside the face's projection,
+  // though on the edge of both facets.
+  bool across_diagonal(const Facet& f, const std::vector<int>& near, const P2& p) const {
+    const std::size_t n = f.v.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const VertexId a = f.id[k], b = f.id[(k + 1) % n];
+      const P2 &u = f.v[k].xy(), &v = f.v[(k + 1) % n].xy();
+      if (a < 0 || b < 0 || CGAL::orientation(u, v, p) != CGAL::COLLINEAR) continue;
+      if (CGAL::compare_xy(p, u) == CGAL::compare_xy(p, v)) continue;   // (not between its ends)
+      const CGAL::Orientation mine = CGAL::orientation(u, v, f.v[(k + 2) % n].xy());
+      for (int gi : near) {
+        const Facet& g = ss_.facets[static_cast<std::size_t>(gi)];
+        if (&g == &f || g.face != f.face || g.v.empty()) continue;
+        for (std::size_t j = 0, m = g.v.size(); j < m; ++j) {
+          const VertexId c = g.id[j], d = g.id[(j + 1) % m];
+          if (!((c == a && d == b) || (c == b && d == a))) continue;
+          if (CGAL::orientation(u, v, g.v[(j + 2) % m].xy()) == -mine) return true;
+        }
+      }
+    }
+    return false;
+  }
+
   static bool own(const Curve& c, const Facet& f) {
     return std::find(c.faces.begin(), c.faces.end(), f.face) != c.faces.end();
   }
