@@ -115,6 +115,9 @@ TinyCase decode_tiny(const std::uint8_t* data, std::size_t size) {
   }
   if (t.options.crease_deg != 30) args << " --crease " << num(t.options.crease_deg);
   if (t.options.smooth) args << " --smooth";
+  // Always with the hidden lines: the checker checks them too, and both engines must agree on them.
+  t.options.hidden = true;
+  args << " --hidden";
   t.args = args.str();
   return t;
 }
