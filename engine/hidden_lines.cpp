@@ -12,11 +12,11 @@
 
 #include <algorithm>
 #include <array>
-#include <unordered_map>
-#include <mutex>
-#include <memory>
 #include <cmath>
+#include <memory>
+#include <mutex>
 #include <numeric>
+#include <unordered_map>
 
 #include "engine/engine_run.h"
 #include "engine/franklin_grid.h"
@@ -358,89 +358,114 @@ struct Run {
   int curve;
 };
 
-void sort_points(std::vector<P2>& v) {
-  std::sort(v.begin(), v.end(), [](const P2& a, const P2& b) { return CGAL::compare_xy(a, b) == CGAL::SMALLER; });
-  v.erase(std::unique(v.begin(), v.end(), [](const P2& a, const P2& b) { return a == b; }), v.end());
-}
+bool less_xy(const P2& a, const P2& b) { return CGAL::compare_xy(a, b) == CGAL::SMALLER; }
 
-// The hidden runs of one screen line, whose items are group (in any order), in
-// order along the line, appended to `out`.
-void hidden_on_line(const ScreenScene& ss, const std::vector<Item>& items, const std::vector<int>& group,
-                    const Visibility& vis, std::vector<Run>& out) {
-  std::vector<P2> ev;
-  for (int i : group) {
-    ev.push_back(items[static_cast<std::size_t>(i)].lo);
-    ev.push_back(items[static_cast<std::size_t>(i)].hi);
+// One screen line's items (a group, in any order), swept along the line: its
+// stretches between consecutive end points, each with the segments and seams
+// over it and the drawn pieces on it.
+class LineSweep {
+ public:
+  LineSweep(const ScreenScene& ss, const std::vector<Item>& items, const std::vector<int>& group, const Visibility& vis)
+      : ss_(ss), vis_(vis) {
+    for (int i : group) {
+      ev_.push_back(items[static_cast<std::size_t>(i)].lo);
+      ev_.push_back(items[static_cast<std::size_t>(i)].hi);
+    }
+    sort_points(ev_);
+    const std::size_t m = ev_.size() - 1;
+    covered_.assign(m + 1, 0);
+    seams_.assign(m + 1, 0);
+    drawn_.resize(m);
+    for (int i : group) {
+      const Item& it = items[static_cast<std::size_t>(i)];
+      const std::size_t a = at(it.lo), b = at(it.hi);
+      if (it.role == Role::Drawn) {
+        for (std::size_t k = a; k < b; ++k) drawn_[k].push_back(it.curve);
+      } else {   // (counts: +1 where it starts, -1 where it ends)
+        std::vector<int>& count = it.role == Role::Segment ? covered_ : seams_;
+        ++count[a];
+        --count[b];
+      }
+    }
+    along_x_ = CGAL::compare_x(ev_.front(), ev_.back()) != CGAL::EQUAL;
   }
-  sort_points(ev);
-  auto at = [&](const P2& p) {
-    return static_cast<std::size_t>(
-        std::lower_bound(ev.begin(), ev.end(), p,
-                         [](const P2& a, const P2& b) { return CGAL::compare_xy(a, b) == CGAL::SMALLER; }) -
-        ev.begin());
-  };
-  // Per stretch between consecutive events: segments and seams over it, the drawn pieces on it.
-  const std::size_t m = ev.size() - 1;
-  std::vector<int> covered(m + 1, 0), seams(m + 1, 0);
-  std::vector<std::vector<int>> drawn(m);
-  for (int i : group) {
-    const Item& it = items[static_cast<std::size_t>(i)];
-    const std::size_t a = at(it.lo), b = at(it.hi);
-    if (it.role == Role::Drawn) {
-      for (std::size_t k = a; k < b; ++k) drawn[k].push_back(it.curve);
-    } else {
-      std::vector<int>& count = it.role == Role::Segment ? covered : seams;
-      ++count[a];
-      --count[b];
+
+  // The hidden runs, in order along the line, appended to `out`.
+  void runs(std::vector<Run>& out) const {
+    int cover = 0, seam = 0;
+    bool open = false;   // the last run may go on
+    for (std::size_t k = 0; k + 1 < ev_.size(); ++k) {
+      cover += covered_[k];
+      seam += seams_[k];
+      if (cover > 0 || drawn_[k].empty()) { open = false; continue; }
+      const std::vector<P2> cut = cuts(k, seam > 0);
+      for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
+        const int first = first_hidden(k, CGAL::midpoint(cut[s], cut[s + 1]), seam > 0);
+        if (first < 0) { open = false; continue; }
+        if (open && same_kind_and_faces(out.back().curve, first)) out.back().hi = cut[s + 1];
+        else out.push_back(Run{cut[s], cut[s + 1], first});
+        open = true;
+      }
     }
   }
-  const bool along_x = CGAL::compare_x(ev.front(), ev.back()) != CGAL::EQUAL;
-  auto curve = [&](int c) -> const Curve& { return ss.curves[static_cast<std::size_t>(c)]; };
-  // c first in (depth, face index) at p; where both tie (one 3D line, one lowest
-  // face), their faces lists decide, lexicographically.
-  auto before = [&](int c, int d, const P2& p) {
-    const CGAL::Sign gap = depth_gap(curve(c), curve(d), p, along_x);
+
+ private:
+  static void sort_points(std::vector<P2>& v) {
+    std::sort(v.begin(), v.end(), less_xy);
+    v.erase(std::unique(v.begin(), v.end(), [](const P2& a, const P2& b) { return a == b; }), v.end());
+  }
+  std::size_t at(const P2& p) const {
+    return static_cast<std::size_t>(std::lower_bound(ev_.begin(), ev_.end(), p, less_xy) - ev_.begin());
+  }
+  const Curve& curve(int c) const { return ss_.curves[static_cast<std::size_t>(c)]; }
+
+  // Stretch k cut where its first hidden piece may change: where two of its
+  // drawn pieces' depths cross, and, under a seam, where their visibility may.
+  std::vector<P2> cuts(std::size_t k, bool under_seam) const {
+    std::vector<P2> out{ev_[k], ev_[k + 1]};
+    const std::vector<int>& d = drawn_[k];
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      for (std::size_t j = i + 1; j < d.size(); ++j) {
+        P2 x;
+        if (depth_crossing(curve(d[i]), curve(d[j]), ev_[k], ev_[k + 1], x)) out.push_back(x);
+      }
+      if (under_seam) vis_.changes(curve(d[i]), ev_[k], ev_[k + 1], out);
+    }
+    sort_points(out);
+    return out;
+  }
+
+  // Of stretch k's drawn pieces hidden at p (all of them, unless under a seam),
+  // the first in (depth, face index); -1 if none.
+  int first_hidden(std::size_t k, const P2& p, bool under_seam) const {
+    int first = -1;
+    for (int c : drawn_[k]) {
+      if (under_seam && vis_.visible(curve(c), p)) continue;
+      if (first < 0 || before(c, first, p)) first = c;
+    }
+    return first;
+  }
+
+  // c before d in (depth, face index) at p; where both tie (one 3D line, one
+  // lowest face), their faces lists decide, lexicographically.
+  bool before(int c, int d, const P2& p) const {
+    const CGAL::Sign gap = depth_gap(curve(c), curve(d), p, along_x_);
     if (gap != CGAL::ZERO) return gap < 0;
     const SmallInts &fc = curve(c).faces, &fd = curve(d).faces;
     if (!std::equal(fc.begin(), fc.end(), fd.begin(), fd.end()))
       return std::lexicographical_compare(fc.begin(), fc.end(), fd.begin(), fd.end());
     return c < d;
-  };
-  auto same_line_kind = [&](int c, int d) { return curve(c).kind == curve(d).kind && curve(c).faces == curve(d).faces; };
-  int cover = 0, seam = 0;
-  bool open = false;   // the last run may go on
-  for (std::size_t k = 0; k < m; ++k) {
-    cover += covered[k];
-    seam += seams[k];
-    if (cover > 0 || drawn[k].empty()) { open = false; continue; }
-    std::vector<P2> cuts{ev[k], ev[k + 1]};
-    for (std::size_t i = 0; i < drawn[k].size(); ++i) {
-      for (std::size_t j = i + 1; j < drawn[k].size(); ++j) {
-        P2 x;
-        if (depth_crossing(curve(drawn[k][i]), curve(drawn[k][j]), ev[k], ev[k + 1], x)) cuts.push_back(x);
-      }
-      if (seam > 0) vis.changes(curve(drawn[k][i]), ev[k], ev[k + 1], cuts);
-    }
-    sort_points(cuts);
-    for (std::size_t s = 0; s + 1 < cuts.size(); ++s) {
-      const P2 mid = CGAL::midpoint(cuts[s], cuts[s + 1]);
-      int first = -1;
-      for (int c : drawn[k]) {
-        if (seam > 0 && vis.visible(curve(c), mid)) continue;
-        if (first < 0 || before(c, first, mid)) first = c;
-      }
-      if (first < 0) { open = false; continue; }
-      if (open && same_line_kind(out.back().curve, first)) out.back().hi = cuts[s + 1];
-      else out.push_back(Run{cuts[s], cuts[s + 1], first});
-      open = true;
-    }
   }
-}
+  bool same_kind_and_faces(int c, int d) const { return curve(c).kind == curve(d).kind && curve(c).faces == curve(d).faces; }
 
-// The runs of every screen line: items grouped by line, exactly, each group's
-// runs in order along it. Intervals of each line's slope and offset sort most
-// items apart first; exact tests only among items whose intervals overlap. A
-// drawn piece alone on its line is hidden throughout.
+  const ScreenScene& ss_;
+  const Visibility& vis_;
+  std::vector<P2> ev_;                    // the items' end points, in order along the line
+  std::vector<int> covered_, seams_;      // segments and seams starting (+1) and ending (-1) at each
+  std::vector<std::vector<int>> drawn_;   // per stretch: the drawn pieces on it
+  bool along_x_ = true;                   // (the line is not vertical: depths compared along x)
+};
+
 // The clusters of items whose keys overlap in slope and then in offset (equal
 // lines always share one), as ranges of `idx`.
 std::vector<std::pair<std::size_t, std::size_t>> clusters(const std::vector<LineKey>& keys, std::vector<int>& idx) {
@@ -455,6 +480,10 @@ std::vector<std::pair<std::size_t, std::size_t>> clusters(const std::vector<Line
   return out;
 }
 
+// The runs of every screen line: items grouped by line, exactly, each group's
+// runs in order along it. Intervals of each line's slope and offset sort most
+// items apart first; exact tests only among items whose intervals overlap. A
+// drawn piece alone on its line is hidden throughout.
 std::vector<Run> hidden_runs(const ScreenScene& ss, const std::vector<Item>& items, const Visibility& vis, int threads) {
   std::vector<LineKey> keys(items.size());
   parallel_chunks(static_cast<int>(items.size()), 4096, threads, [&](int, Chunk r) {
@@ -474,7 +503,7 @@ std::vector<Run> hidden_runs(const ScreenScene& ss, const std::vector<Item>& ite
         return;
       }
       if (std::any_of(group.begin(), group.end(), [&](int g) { return at(g).role == Role::Drawn; }))
-        hidden_on_line(ss, items, group, vis, out);
+        LineSweep(ss, items, group, vis).runs(out);
     };
     const Chunk r = chunk(k, n, size);
     for (int c = r.begin; c < r.end; ++c) {
