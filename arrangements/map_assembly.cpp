@@ -135,6 +135,7 @@ CGAL::Sign compare_y_at(const P2& x, const P2& u1, const P2& v1, const P2& u2, c
 }
 
 struct Assembly {
+  Assembly(MapGraph& graph, int thread_count) : g(graph), threads(thread_count) {}
   MapGraph& g;
   int threads = 1;
   int nverts = 0, nhalf = 0;
@@ -400,7 +401,7 @@ void assemble_map(std::vector<MapPiece>& pieces, VisibilityMap& map, int threads
 }
 
 void finish_map(MapGraph& g, VisibilityMap& map, int threads) {
-  Assembly a{g, threads};
+  Assembly a(g, threads);
   a.sort_around_vertices();
   a.trace_cycles();
 

@@ -199,11 +199,6 @@ TopoDS_Compound make_mesh_shape(const Scene& scene) {
   return compound;
 }
 
-Vec3 unit(Vec3 a) {
-  const double n = std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
-  return {a.x / n, a.y / n, a.z / n};
-}
-
 // OCCT's projector for vismap's orthographic view: Z to the eye (-dir), X = r.
 HLRAlgo_Projector projector_for(const View& view) {
   const auto& m = view.m;   // rows r, u, f (orthographic, unit vectors)

@@ -180,8 +180,8 @@ inline int projected_sign(const std::array<double, 4>& row, const Vec3& p) {
 // the projected area (non-zero): z = a x + b y + c. Each coefficient is a lazy
 // leaf whose interval comes from the points' intervals; false where those
 // intervals cannot tell the area's sign (the caller then tries other points).
-inline bool depth_plane(const P3& u, const P3& v, const P3& w, const ExactSource& source, std::uint32_t facet, FT& a,
-                        FT& b, FT& c) {
+inline bool depth_plane(const P3& u, const P3& v, const P3& w, [[maybe_unused]] const ExactSource& source,
+                        [[maybe_unused]] std::uint32_t facet, FT& a, FT& b, FT& c) {
 #ifdef VISMAP_FLOAT_KERNEL
   const double x1 = v.x - u.x, y1 = v.y - u.y, z1 = v.z - u.z, x2 = w.x - u.x, y2 = w.y - u.y, z2 = w.z - u.z;
   const double nz = x1 * y2 - y1 * x2;

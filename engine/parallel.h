@@ -35,6 +35,7 @@ namespace vismap::engine {
 // rethrown here, after the loop.
 template <class Body>
 void parallel_for(int n, int threads, Body&& body) {
+  static_cast<void>(threads);   // (one thread without OpenMP)
 #ifdef _OPENMP
   if (threads > 1 && n > 1) {
     std::exception_ptr error;

@@ -100,8 +100,9 @@ TEST(Chains, CoverTheMapsLinesOnceAndAreMaximal) {
       }
       for (const Chain& c : d.chains) {
         auto deg = [&](const std::array<double, 2>& p) { return degree[{static_cast<int>(c.cls), p[0], p[1]}]; };
-        for (std::size_t i = 1; i + 1 < c.screen.size(); ++i)
-          if (!provenance) EXPECT_EQ(deg(c.screen[i]), 2) << file << ": a chain passes a vertex of its class's degree " << deg(c.screen[i]);
+        for (std::size_t i = 1; i + 1 < c.screen.size() && !provenance; ++i) {
+          EXPECT_EQ(deg(c.screen[i]), 2) << file << ": a chain passes a vertex of its class's degree " << deg(c.screen[i]);
+        }
         if (!c.closed && !provenance) {
           EXPECT_NE(deg(c.screen.front()), 2) << file << ": a chain could go on at its start";
           EXPECT_NE(deg(c.screen.back()), 2) << file << ": a chain could go on at its end";
