@@ -1,4 +1,4 @@
-// The exact map as JSON, exactly as ../shared/spec/vismap-json.md prescribes.
+// The exact map as JSON, exactly as docs/format.md prescribes.
 #pragma once
 #include <functional>
 #include <string>

@@ -61,7 +61,7 @@ outputs (files are written whole or not at all; "-" is standard output):
                        angle between a face's normal and the light (default
                        0.65,1,0.3: a flat shade)
   --light X,Y,Z        direction towards the light (default: at the eye)
-  --json FILE          the exact map (format: shared/spec/vismap-json.md)
+  --json FILE          the exact map (format: docs/format.md)
   --no-regions         the JSON without its "regions" (only the segments: what a
                        lines-only drawing needs, computed faster)
 camera (default: orthographic, the whole scene seen obliquely):

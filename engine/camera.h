@@ -1,5 +1,5 @@
 // Camera: how the scene is looked at. The view matrix is built in doubles, and
-// those doubles are then the exact matrix (see ../shared/spec/vismap-json.md).
+// those doubles are then the exact matrix (see docs/format.md).
 #pragma once
 #include <array>
 #include <optional>

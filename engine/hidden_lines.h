@@ -1,4 +1,4 @@
-// The hidden lines (../shared/spec/vismap-json.md, "hidden"), made once either
+// The hidden lines (docs/format.md, "hidden"), made once either
 // engine has made the visible map: every edge piece and intersection line of
 // the scene (back faces and faces hidden everywhere included), less where it is
 // visible and where a visible segment lies over it on the screen.

@@ -1,7 +1,7 @@
 // vismap_check: an independent, brute-force, exact checker of vismap JSON maps.
 // It shares nothing with the engine but the Scene struct: its own JSON parser,
 // its own projection and clipping, GMP rationals for every decision (no doubles,
-// no epsilons). See /work/shared/spec/vismap-json.md for the contract checked.
+// no epsilons). See docs/format.md for the contract checked.
 #pragma once
 #include <cstddef>
 #include <cstdint>

@@ -91,7 +91,7 @@ struct LineError {
 LineError line_error(const VisibilityMap& map, const Image& image, const Window& w, const LineRule& rule,
                      double tol_pixels = 1.25);
 
-// The map from its JSON text (../shared/spec/vismap-json.md): projection, view
+// The map from its JSON text (docs/format.md): projection, view
 // matrix, regions and segments (stats are ignored). Throws std::runtime_error on
 // anything it cannot read.
 VisibilityMap read_map_json(std::string_view text);
