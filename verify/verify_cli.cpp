@@ -26,8 +26,10 @@ through the view matrix written in the map: region labels at random rational
 points against the brute-force nearest face (depth, then lowest index), the
 exact total area of the regions, every segment visible along its interior and
 of the right kind and faces, every visible edge and intersection line covered,
-the topology, and the canonical format. Shares no code with the engines beyond
-the mesh readers and GMP.
+the topology, and the canonical format; where the map has "hidden" lines (made
+with --hidden), each of them hidden and uncovered along its interior, of the
+right kind and faces, every hidden stretch covered, none overlapping, each
+maximal. Shares no code with the engines beyond the mesh readers and GMP.
 
 Either SCENE or MAP.json (not both) may be "-" for standard input.
 
