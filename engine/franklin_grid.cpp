@@ -647,7 +647,7 @@ bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3
   }
   V2 d(-db, da);
   bool has_lo = false, has_hi = false;
-  FT lo, hi;
+  FT lo(0), hi(0);   // (set before use: has_lo, has_hi)
   for (const Facet* F : {&A, &B}) {
     const std::size_t n = F->v.size();
     for (std::size_t k = 0; k < n; ++k) {
