@@ -4,7 +4,7 @@
 //
 // 1. Thread-safe (CGAL_HAS_THREADS, CGAL's default): Franklin's engine runs loops
 //    on several threads (engine/parallel.h) over lazy numbers they share. The
-//    price on one thread, 10-14% of the CPU time (README, Threads): a
+//    price on one thread, 10-14% of the CPU time (docs/how-it-works.md, Threads): a
 //    std::call_once per first exact evaluation, and reference counts that are
 //    out-of-line calls asking glibc whether the process is still single-threaded
 //    (__libc_single_threaded; they become atomic once a second thread exists).

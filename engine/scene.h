@@ -40,7 +40,7 @@ struct ReadLimits {
 
 // --- Memory -------------------------------------------------------------------------
 // Estimated peak memory of a run on a scene: the file's bytes plus the engine's
-// working set per vertex, face and face corner. Measured peaks (README "Limits"):
+// working set per vertex, face and face corner. Measured peaks (docs/cli.md, "Limits"):
 // 10-11 KB per face on terrains, 24-35 KB per face on random squares, for 10^4
 // to 10^5 faces; the model stays at or below them (about 9-10 KB per face on
 // both), so that it refuses up front what could never fit without refusing what

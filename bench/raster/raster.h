@@ -64,7 +64,7 @@ struct ScreenScene {
 };
 
 // The scene in screen space, in doubles, with the engine's conventions
-// (README "Perspective"): (X, Y, Z, W) = view.m * (x, y, z, 1); a perspective
+// (docs/format.md, perspective): (X, Y, Z, W) = view.m * (x, y, z, 1); a perspective
 // view keeps Z >= 0 (the near plane; polygons are clipped there in homogeneous
 // coordinates) and divides: screen (X/W, Y/W), depth Z/W, which is affine over
 // the screen image of a plane, so one depth plane per piece is exact up to
