@@ -167,7 +167,7 @@ class WorldGrid {
 // line for every pair of facets of different faces that cross strictly inside
 // both projections, as the engines find the visible ones; lines in the order of
 // their pairs.
-void add_all_intersection_lines(ScreenScene& ss, const WorldFacets& wf) {
+void add_all_intersection_lines(ScreenScene& ss, const WorldFacets& wf, int threads) {
   struct Crossing {
     int fa, fb;
     P2 p, q;
@@ -175,29 +175,44 @@ void add_all_intersection_lines(ScreenScene& ss, const WorldFacets& wf) {
   std::vector<char> listed(ss.facets.size());
   for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) listed[fi] = FacetGrid::hides(ss.facets[fi]);
   const WorldGrid grid(wf, *ss.world, listed);
-  std::vector<Crossing> found;
-  auto test = [&](int fa, int fb) {   // (fa < fb)
+  auto test = [&](int fa, int fb, std::vector<Crossing>& out) {   // (fa < fb)
     const Facet &A = ss.facets[static_cast<std::size_t>(fa)], &B = ss.facets[static_cast<std::size_t>(fb)];
     if (A.face == B.face || !WorldGrid::meet(grid.box(fa), grid.box(fb))) return;
     if (!CGAL::do_overlap(A.box, B.box) || A.zhi < B.zlo || B.zhi < A.zlo || share_an_edge(A, B)) return;
     P2 p, q;
-    if (intersection_segment(A, B, ss.world, p, q)) found.push_back(Crossing{fa, fb, p, q});
+    if (intersection_segment(A, B, ss.world, p, q)) out.push_back(Crossing{fa, fb, p, q});
   };
-  for (const auto& [key, in] : grid.cells())
-    for (std::size_t i = 0; i < in.size(); ++i)
-      for (std::size_t j = i + 1; j < in.size(); ++j) {
-        const int fa = std::min(in[i], in[j]), fb = std::max(in[i], in[j]);
-        if (grid.first_common(grid.box(fa), grid.box(fb), key)) test(fa, fb);
-      }
+  // The cubes, then the facets far larger than the median, in chunks on the threads.
+  std::vector<std::pair<const WorldGrid::Cube*, const std::vector<int>*>> cubes;
+  for (const auto& [cube, in] : grid.cells()) cubes.emplace_back(&cube, &in);
   const std::vector<int>& big = grid.big();
-  for (int b : big)
-    for (std::size_t fi = 0; fi < listed.size(); ++fi) {
-      const int f = static_cast<int>(fi);
-      if (!listed[fi] || f == b || (std::binary_search(big.begin(), big.end(), f) && f < b)) continue;
-      test(std::min(b, f), std::max(b, f));
+  const int nc = static_cast<int>(cubes.size()), nb = static_cast<int>(big.size());
+  const int size = 512, cube_chunks = chunk_count(nc, size);
+  std::vector<Crossing> found;
+  parallel_append(found, cube_chunks + nb, threads, [&](int k, std::vector<Crossing>& out) {
+    if (k >= cube_chunks) {   // a big facet against every other listed one
+      const int b = big[static_cast<std::size_t>(k - cube_chunks)];
+      for (std::size_t fi = 0; fi < listed.size(); ++fi) {
+        const int f = static_cast<int>(fi);
+        if (!listed[fi] || f == b || (std::binary_search(big.begin(), big.end(), f) && f < b)) continue;
+        test(std::min(b, f), std::max(b, f), out);
+      }
+      return;
     }
-  std::sort(found.begin(), found.end(),
-            [](const Crossing& x, const Crossing& y) { return std::pair(x.fa, x.fb) < std::pair(y.fa, y.fb); });
+    const Chunk r = chunk(k, nc, size);
+    for (int c = r.begin; c < r.end; ++c) {
+      const auto& [cube, in] = cubes[static_cast<std::size_t>(c)];
+      for (std::size_t i = 0; i < in->size(); ++i)
+        for (std::size_t j = i + 1; j < in->size(); ++j) {
+          const int fa = std::min((*in)[i], (*in)[j]), fb = std::max((*in)[i], (*in)[j]);
+          if (grid.first_common(grid.box(fa), grid.box(fb), *cube)) test(fa, fb, out);
+        }
+    }
+  });
+  // (In the order of their pairs: the same for every thread count.)
+  parallel_sort(found.begin(), found.end(),
+                [](const Crossing& x, const Crossing& y) { return std::pair(x.fa, x.fb) < std::pair(y.fa, y.fb); },
+                threads);
   std::deque<P3>& line_ends = ss.ends.emplace_back();
   for (const Crossing& c : found) {
     const Facet &A = ss.facets[static_cast<std::size_t>(c.fa)], &B = ss.facets[static_cast<std::size_t>(c.fb)];
@@ -580,7 +595,7 @@ void add_hidden_lines(const Scene& scene, const View& view, const EngineOptions&
   Stats scratch;
   ScreenScene ss = make_screen_scene(scene, view, options, scratch, /*latent=*/false, /*cull=*/false);
   map.stats.time("hidden_scene", clock.lap());
-  add_all_intersection_lines(ss, *world_facets_of(ss));
+  add_all_intersection_lines(ss, *world_facets_of(ss), threads);
   map.stats.time("hidden_intersections", clock.lap());
   const Visibility vis(ss);
   const std::vector<Item> items = line_items(ss, map);
