@@ -72,11 +72,12 @@ void chains(cairo_t* cr, const Drawing& d, const DrawingStyle& style) {
     for (double v : ls.dash) dash.push_back(v * at.per_mm());
     const bool cut = style.cut_dashes && !dash.empty();
     cairo_set_dash(cr, dash.data(), cut ? 0 : static_cast<int>(dash.size()), 0);
+    const std::vector<std::array<double, 2>> points = page_points(c, at);
     if (cut) {
-      for (const auto& piece : dashed(c, dash))
+      for (const auto& piece : dashed(points, c.closed, dash))
         for (std::size_t i = 0; i < piece.size(); ++i) (i ? cairo_line_to : cairo_move_to)(cr, piece[i][0], piece[i][1]);
     } else {
-      for (std::size_t i = 0; i < c.points.size(); ++i) (i ? cairo_line_to : cairo_move_to)(cr, c.points[i][0], c.points[i][1]);
+      for (std::size_t i = 0; i < points.size(); ++i) (i ? cairo_line_to : cairo_move_to)(cr, points[i][0], points[i][1]);
       if (c.closed) cairo_close_path(cr);
     }
     cairo_stroke(cr);

@@ -289,7 +289,7 @@ LineSet lines_of(const VisibilityMap& map, bool by_provenance) {
 
 }  // namespace
 
-std::vector<Chain> chains_of(const VisibilityMap& map, const Placement& at, bool by_provenance) {
+std::vector<Chain> chains_of(const VisibilityMap& map, bool by_provenance) {
   const LineSet ls = lines_of(map, by_provenance);
   const std::vector<Line>& lines = ls.lines;
   // The lines of each group at each point.
@@ -339,11 +339,7 @@ std::vector<Chain> chains_of(const VisibilityMap& map, const Placement& at, bool
     c.faces = *l.faces;
     c.closed = path.size() > 2 && path.front() == path.back();
     if (c.closed) path.pop_back();
-    for (std::uint32_t p : path) {
-      const double x = ls.point[p]->x.get_d(), y = ls.point[p]->y.get_d();
-      c.screen.push_back({x, y});
-      c.points.push_back(at.at(x, y));
-    }
+    for (std::uint32_t p : path) c.screen.push_back({ls.point[p]->x.get_d(), ls.point[p]->y.get_d()});
     out.push_back(std::move(c));
   }
   return out;
@@ -357,21 +353,21 @@ double distance(const std::array<double, 2>& a, const std::array<double, 2>& b) 
   return std::hypot(a[0] - b[0], a[1] - b[1]);
 }
 
-void reverse(Chain& c) {
-  std::reverse(c.points.begin(), c.points.end());
-  std::reverse(c.screen.begin(), c.screen.end());
-}
+// Where the pen starts and ends a chain, on the page.
+std::array<double, 2> start(const Chain& c, const Placement& at) { return at.at(c.screen.front()); }
+std::array<double, 2> finish(const Chain& c, const Placement& at) { return at.at(c.closed ? c.screen.front() : c.screen.back()); }
 
 // Nearest-neighbour order of chains [begin, end) from pen position `pen`, over a
 // uniform grid of their end points (rings of cells searched outwards).
-void order_nearest(std::vector<Chain>& chains, std::size_t begin, std::size_t end, std::array<double, 2>& pen) {
+void order_nearest(std::vector<Chain>& chains, std::size_t begin, std::size_t end, const Placement& at,
+                   std::array<double, 2>& pen) {
   const std::size_t n = end - begin;
   if (n == 0) return;
   double xa = HUGE_VAL, ya = HUGE_VAL, xb = -HUGE_VAL, yb = -HUGE_VAL;
   for (std::size_t i = begin; i < end; ++i)
-    for (const auto* p : {&chains[i].points.front(), &chains[i].points.back()}) {
-      xa = std::min(xa, (*p)[0]); xb = std::max(xb, (*p)[0]);
-      ya = std::min(ya, (*p)[1]); yb = std::max(yb, (*p)[1]);
+    for (const auto& p : {at.at(chains[i].screen.front()), at.at(chains[i].screen.back())}) {
+      xa = std::min(xa, p[0]); xb = std::max(xb, p[0]);
+      ya = std::min(ya, p[1]); yb = std::max(yb, p[1]);
     }
   const int side = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(n))));
   const double cw = std::max((xb - xa) / side, 1e-12), ch = std::max((yb - ya) / side, 1e-12);
@@ -382,7 +378,7 @@ void order_nearest(std::vector<Chain>& chains, std::size_t begin, std::size_t en
   std::vector<std::vector<std::pair<std::size_t, bool>>> cells(static_cast<std::size_t>(side) * side);   // (chain, at its end)
   for (std::size_t i = begin; i < end; ++i)
     for (bool at_end : {false, true}) {
-      const auto c = cell_of(at_end ? chains[i].points.back() : chains[i].points.front());
+      const auto c = cell_of(at.at(at_end ? chains[i].screen.back() : chains[i].screen.front()));
       cells[static_cast<std::size_t>(c[1]) * side + c[0]].emplace_back(i, at_end);
     }
   std::vector<char> done(chains.size(), 0);
@@ -402,15 +398,15 @@ void order_nearest(std::vector<Chain>& chains, std::size_t begin, std::size_t en
           if (std::max(std::abs(ix - c[0]), std::abs(iy - c[1])) != r) continue;
           for (const auto& [i, at_end] : cells[static_cast<std::size_t>(iy) * side + ix]) {
             if (done[i]) continue;
-            const double d = distance(pen, at_end ? chains[i].points.back() : chains[i].points.front());
+            const double d = distance(pen, at.at(at_end ? chains[i].screen.back() : chains[i].screen.front()));
             if (d < best_d || (d == best_d && i < best)) { best_d = d; best = i; best_end = at_end; }
           }
         }
     }
     done[best] = 1;
     Chain next = std::move(chains[best]);
-    if (best_end && !next.closed) reverse(next);
-    pen = next.closed ? next.points.front() : next.points.back();
+    if (best_end && !next.closed) std::reverse(next.screen.begin(), next.screen.end());
+    pen = finish(next, at);
     ordered.push_back(std::move(next));
   }
   std::move(ordered.begin(), ordered.end(), chains.begin() + static_cast<std::ptrdiff_t>(begin));
@@ -418,22 +414,29 @@ void order_nearest(std::vector<Chain>& chains, std::size_t begin, std::size_t en
 
 }  // namespace
 
-double travel(const std::vector<Chain>& chains) {
+std::vector<std::array<double, 2>> page_points(const Chain& c, const Placement& at) {
+  std::vector<std::array<double, 2>> out;
+  out.reserve(c.screen.size());
+  for (const auto& p : c.screen) out.push_back(at.at(p));
+  return out;
+}
+
+double travel(const std::vector<Chain>& chains, const Placement& at) {
   double t = 0;
   std::array<double, 2> pen{0, 0};
   for (const Chain& c : chains) {
-    t += distance(pen, c.points.front());
-    pen = c.closed ? c.points.front() : c.points.back();
+    t += distance(pen, start(c, at));
+    pen = finish(c, at);
   }
   return t;
 }
 
-void optimize_travel(std::vector<Chain>& chains) {
+void optimize_travel(std::vector<Chain>& chains, const Placement& at) {
   std::array<double, 2> pen{0, 0};
   for (std::size_t i = 0; i < chains.size();) {   // each class (a layer: one pen) on its own
     std::size_t j = i;
     while (j < chains.size() && chains[j].cls == chains[i].cls) ++j;
-    order_nearest(chains, i, j, pen);
+    order_nearest(chains, i, j, at, pen);
     i = j;
   }
 }
@@ -441,21 +444,22 @@ void optimize_travel(std::vector<Chain>& chains) {
 Drawing make_drawing(const VisibilityMap& map, const PageOptions& page, bool by_provenance, bool optimize) {
   Drawing d;
   d.at = place(map, page);
-  d.chains = chains_of(map, d.at, by_provenance);
-  d.travel_before = d.travel_after = travel(d.chains);
+  d.chains = chains_of(map, by_provenance);
+  d.travel_before = d.travel_after = travel(d.chains, d.at);
   if (optimize) {
-    optimize_travel(d.chains);
-    d.travel_after = travel(d.chains);
+    optimize_travel(d.chains, d.at);
+    d.travel_after = travel(d.chains, d.at);
   }
   return d;
 }
 
 // ---- dashes as geometry --------------------------------------------------------------
 
-std::vector<std::vector<std::array<double, 2>>> dashed(const Chain& c, const std::vector<double>& dash) {
+std::vector<std::vector<std::array<double, 2>>> dashed(const std::vector<std::array<double, 2>>& points, bool closed,
+                                                       const std::vector<double>& dash) {
   std::vector<std::vector<std::array<double, 2>>> out;
-  std::vector<std::array<double, 2>> pts = c.points;
-  if (c.closed) pts.push_back(pts.front());
+  std::vector<std::array<double, 2>> pts = points;
+  if (closed) pts.push_back(pts.front());
   if (dash.empty()) {
     out.push_back(pts);
     return out;

@@ -87,6 +87,7 @@ struct Placement {
   double k = 1;                   // page units per screen unit
   double left = 0, bottom = 0;    // where (x0, y0) goes, from the page's left and bottom
   std::array<double, 2> at(double x, double y) const { return {left + (x - x0) * k, height - bottom - (y - y0) * k}; }
+  std::array<double, 2> at(const std::array<double, 2>& screen) const { return at(screen[0], screen[1]); }
   double per_mm() const { return mm ? 1 : 96 / 25.4; }   // page units per mm
 };
 Placement place(const VisibilityMap& map, const PageOptions& page);
@@ -95,19 +96,20 @@ Placement place(const VisibilityMap& map, const PageOptions& page);
 // class's lines meet (with provenance: of one kind and faces list too).
 struct Chain {
   LineClass cls = LineClass::Outline;
-  std::vector<std::array<double, 2>> points;   // page coordinates
-  std::vector<std::array<double, 2>> screen;   // the same points on the screen
+  std::vector<std::array<double, 2>> screen;   // its points on the screen (on the page: Placement::at)
   bool closed = false;                         // (the last point is not repeated)
   EdgeKind kind = EdgeKind::Border;            // with provenance: its lines' kind and faces
   std::vector<int> faces;
 };
 // Each line exactly once; chains by class, in the order of their first line.
-std::vector<Chain> chains_of(const VisibilityMap& map, const Placement& at, bool by_provenance);
+std::vector<Chain> chains_of(const VisibilityMap& map, bool by_provenance);
+// A chain's points on the page.
+std::vector<std::array<double, 2>> page_points(const Chain& c, const Placement& at);
 
 // Pen-up travel (page units): from the page's origin through the chains in order.
-double travel(const std::vector<Chain>& chains);
+double travel(const std::vector<Chain>& chains, const Placement& at);
 // Reorders (and reverses) the chains of each class, nearest next start first.
-void optimize_travel(std::vector<Chain>& chains);
+void optimize_travel(std::vector<Chain>& chains, const Placement& at);
 
 // The drawing of a map: where it goes, and its chains (in pen order with
 // `optimize`; travel before and after, page units).
@@ -118,7 +120,9 @@ struct Drawing {
 };
 Drawing make_drawing(const VisibilityMap& map, const PageOptions& page, bool by_provenance, bool optimize);
 
-// A chain's dashes as sub-polylines (page units), for cut dashes.
-std::vector<std::vector<std::array<double, 2>>> dashed(const Chain& c, const std::vector<double>& dash);
+// A polyline's dashes as sub-polylines (page units, closed: back to its first
+// point), for cut dashes.
+std::vector<std::vector<std::array<double, 2>>> dashed(const std::vector<std::array<double, 2>>& points, bool closed,
+                                                       const std::vector<double>& dash);
 
 }  // namespace vismap

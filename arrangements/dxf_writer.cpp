@@ -19,8 +19,6 @@ std::string real(double v) {
   return buf;
 }
 
-const char* layer_name(LineClass c) { return class_name(c); }
-
 // AutoCAD colour index per class: outline white/black, crease blue,
 // intersection red, smooth green, hidden grey.
 int colour(LineClass c) {
@@ -68,7 +66,7 @@ void layers(std::string& out) {
   for (std::size_t k = 0; k < kLineClasses; ++k) {
     const auto c = static_cast<LineClass>(k);
     group(out, 0, "LAYER");
-    group(out, 2, layer_name(c));
+    group(out, 2, class_name(c));
     group(out, 70, "0");
     group(out, 62, std::to_string(colour(c)));
     group(out, 6, c == LineClass::Hidden ? "HIDDEN" : "CONTINUOUS");
@@ -85,7 +83,7 @@ void vertex(std::string& out, const char* layer, const std::array<double, 2>& p)
 }
 
 void entity(std::string& out, const Chain& c) {
-  const char* layer = layer_name(c.cls);
+  const char* layer = class_name(c.cls);
   if (c.screen.size() == 2 && !c.closed) {
     group(out, 0, "LINE");
     group(out, 8, layer);

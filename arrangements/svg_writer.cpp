@@ -61,14 +61,15 @@ std::string regions_layer(const VisibilityMap& map, const Placement& at, const S
 // A chain's path data: one polyline, or its dashes as sub-paths.
 std::string path_data(const Chain& c, const LineStyle& ls, const Placement& at, bool cut) {
   std::string d;
+  const std::vector<std::array<double, 2>> points = page_points(c, at);
   if (cut && !ls.dash.empty()) {
     std::vector<double> dash;
     for (double v : ls.dash) dash.push_back(v * at.per_mm());
-    for (const auto& piece : dashed(c, dash))
+    for (const auto& piece : dashed(points, c.closed, dash))
       for (std::size_t i = 0; i < piece.size(); ++i) d += (d.empty() ? "M" : i ? " L" : " M") + xy(piece[i]);
     return d;
   }
-  for (std::size_t i = 0; i < c.points.size(); ++i) d += (i ? " L" : "M") + xy(c.points[i]);
+  for (std::size_t i = 0; i < points.size(); ++i) d += (i ? " L" : "M") + xy(points[i]);
   if (c.closed) d += " Z";
   return d;
 }

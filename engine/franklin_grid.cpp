@@ -87,7 +87,6 @@ bool in_cell(const Grid& g, int ix, int iy, const P2& p) {   // (no lazy coordin
          cell_index_of(g.Y, approx_y(p), [&] { return exact_y(p); }) == iy;
 }
 
-
 }  // namespace
 
 bool strictly_inside(const Facet& f, const P2& p) {
@@ -647,7 +646,7 @@ bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3
   }
   V2 d(-db, da);
   bool has_lo = false, has_hi = false;
-  FT lo(0), hi(0);   // (set before use: has_lo, has_hi)
+  FT lo{}, hi{};   // (set before use: has_lo, has_hi; {}: a double is zeroed, a lazy number shares its zero)
   for (const Facet* F : {&A, &B}) {
     const std::size_t n = F->v.size();
     for (std::size_t k = 0; k < n; ++k) {

@@ -59,7 +59,6 @@ class FacetGrid {
   Range range(const CGAL::Bbox_2& b) const {
     return {cell(b.xmin(), x0_, w_), cell(b.ymin(), y0_, h_), cell(b.xmax(), x0_, w_), cell(b.ymax(), y0_, h_)};
   }
-  int side() const { return n_; }
   const std::vector<int>& at(int ix, int iy) const { return cells_[static_cast<std::size_t>(iy) * n_ + ix]; }
   // The facets listed in the cells a box meets, each once, in index order.
   std::vector<int> near(const CGAL::Bbox_2& b) const {
@@ -252,7 +251,11 @@ LineKey key_of(const Item& it) {
   const Interval dx = approx_x(it.hi) - x0, dy = approx_y(it.hi) - y0;
   const Interval norm = CGAL::abs(dx) + CGAL::abs(dy);
   const Interval nx = dx / norm, ny = dy / norm;
-  return {ny, x0 * ny - y0 * nx};
+  const LineKey k{ny, x0 * ny - y0 * nx};
+  // (A NaN bound, from intervals too wide to say anything, would break the sort:
+  // such a key overlaps every other one instead.)
+  auto sure = [](const Interval& v) { return std::isnan(v.inf()) || std::isnan(v.sup()) ? Interval::largest() : v; };
+  return {sure(k.slope), sure(k.offset)};
 }
 
 // Splits idx[begin, end) into runs whose intervals (key(i)) overlap, one after

@@ -177,10 +177,9 @@ TEST(Dxf, ReadsBackThroughEzdxfWithAnEntityPerChain) {
 }
 
 TEST(Dashes, CutPiecesLieOnTheLineAndFollowThePattern) {
-  Chain c;
-  c.points = {{0, 0}, {10, 0}, {10, 7}};
+  const std::vector<std::array<double, 2>> line{{0, 0}, {10, 0}, {10, 7}};
   const std::vector<double> dash{3, 1};
-  const auto pieces = vismap::dashed(c, dash);
+  const auto pieces = vismap::dashed(line, false, dash);
   double drawn = 0;
   for (const auto& p : pieces) {
     double len = 0;
@@ -207,7 +206,7 @@ TEST(Travel, ReorderingKeepsEveryChainAndShortensTheTravel) {
   const vismap::Drawing before = vismap::make_drawing(map, page, false, false);
   const vismap::Drawing after = vismap::make_drawing(map, page, false, true);
   EXPECT_EQ(chain_lines(after.chains), chain_lines(before.chains));
-  EXPECT_DOUBLE_EQ(after.travel_before, vismap::travel(before.chains));
+  EXPECT_DOUBLE_EQ(after.travel_before, vismap::travel(before.chains, before.at));
   EXPECT_LT(after.travel_after, 0.5 * after.travel_before) << "nearest-next order should at least halve random order's travel";
   for (std::size_t i = 1; i < after.chains.size(); ++i)
     EXPECT_LE(after.chains[i - 1].cls, after.chains[i].cls) << "classes (pens) must stay together";

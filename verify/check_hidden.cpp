@@ -94,29 +94,6 @@ void add_hidden_ends(const MapDoc& doc, const P2& a, const P2& b, std::vector<mp
   ts.erase(std::unique(ts.begin(), ts.end()), ts.end());
 }
 
-// The depths at the ends of hidden segment h of the line under it (the hidden
-// line with its kind and faces), from two clean interior points. False if none.
-bool hidden_depth_line(const Context& c, const MapSegment& h, const P2& s, mpq_class& da, mpq_class& db) {
-  static const std::vector<mpq_class> ts = parameters();
-  mpq_class t1, d1;
-  bool have1 = false;
-  for (const mpq_class& t : ts) {
-    const P2 q{h.from.x + t * s.x, h.from.y + t * s.y};
-    const LineView lv = look_along(c.sc, q, s);
-    if (!lv.clean) continue;
-    const LineItem* mine = nullptr;
-    for (const LineItem& it : lv.items)
-      if (it.kind == h.kind && it.faces == h.faces && !it.visible && (!mine || it.before(*mine))) mine = &it;
-    if (!mine) continue;
-    if (!have1) { t1 = t; d1 = mine->depth; have1 = true; continue; }
-    const mpq_class k = (mine->depth - d1) / (t - t1);
-    da = d1 - k * t1;
-    db = d1 + k * (1 - t1);
-    return true;
-  }
-  return false;
-}
-
 void check_segment(Context& c, std::size_t i) {
   static const std::vector<mpq_class> ts = parameters();
   const MapSegment& h = c.doc.hidden[i];
@@ -136,7 +113,7 @@ void check_segment(Context& c, std::size_t i) {
   }
   // Every stretch: three points can miss a short visible or covered part.
   mpq_class da, db;
-  if (!hidden_depth_line(c, h, s, da, db)) return;
+  if (!depth_line(c, h, s, da, db, /*hidden_only=*/true)) return;
   std::vector<mpq_class> cut = stretch_params(c.sc, c.doc, h.from, h.to, da, db);
   add_hidden_ends(c.doc, h.from, h.to, cut);
   for (std::size_t k = 0; k + 1 < cut.size(); ++k) {

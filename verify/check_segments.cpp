@@ -46,6 +46,28 @@ std::vector<mpq_class> parameters() {
   return ts;
 }
 
+bool depth_line(const Context& c, const MapSegment& seg, const P2& s, mpq_class& da, mpq_class& db, bool hidden_only) {
+  static const std::vector<mpq_class> ts = parameters();
+  mpq_class t1, d1;
+  bool have1 = false;
+  for (const mpq_class& t : ts) {
+    P2 q{seg.from.x + t * s.x, seg.from.y + t * s.y};
+    LineView lv = look_along(c.sc, q, s);
+    if (!lv.clean) continue;
+    const LineItem* mine = nullptr;
+    for (const LineItem& it : lv.items)
+      if (it.kind == seg.kind && it.faces == seg.faces && !(hidden_only && it.visible) && (!mine || it.before(*mine)))
+        mine = &it;
+    if (!mine) continue;
+    if (!have1) { t1 = t; d1 = mine->depth; have1 = true; continue; }
+    const mpq_class k = (mine->depth - d1) / (t - t1);   // depth per unit of t
+    da = d1 - k * t1;
+    db = d1 + k * (1 - t1);
+    return true;
+  }
+  return false;
+}
+
 namespace {
 
 constexpr int kPointsPerSegment = 3;
@@ -67,37 +89,13 @@ bool first_at(Context& c, const MapSegment& seg, const std::string& name, const 
   return match;
 }
 
-// The line under a segment: the depths at its ends of the edge piece or
-// intersection line with its kind and faces, from two clean interior points
-// (depth is affine along a screen line). False if not found.
-bool depth_line(const Context& c, const MapSegment& seg, const P2& s, mpq_class& da, mpq_class& db) {
-  static const std::vector<mpq_class> ts = parameters();
-  mpq_class t1, d1;
-  bool have1 = false;
-  for (const mpq_class& t : ts) {
-    P2 q{seg.from.x + t * s.x, seg.from.y + t * s.y};
-    LineView lv = look_along(c.sc, q, s);
-    if (!lv.clean) continue;
-    const LineItem* mine = nullptr;
-    for (const LineItem& it : lv.items)
-      if (it.kind == seg.kind && it.faces == seg.faces && (!mine || it.before(*mine))) mine = &it;
-    if (!mine) continue;
-    if (!have1) { t1 = t; d1 = mine->depth; have1 = true; continue; }
-    const mpq_class k = (mine->depth - d1) / (t - t1);   // depth per unit of t
-    da = d1 - k * t1;
-    db = d1 + k * (1 - t1);
-    return true;
-  }
-  return false;
-}
-
 // Every stretch of the segment between points where what lies over it may change
 // (where its line pierces a face's plane, crosses a projected edge...) must show
 // the segment's line first: three sample points can all miss a short hidden part.
 void check_whole(Context& c, const MapSegment& seg, const std::string& name) {
   const P2 s{seg.to.x - seg.from.x, seg.to.y - seg.from.y};
   mpq_class da, db;
-  if (!depth_line(c, seg, s, da, db)) return;
+  if (!depth_line(c, seg, s, da, db, /*hidden_only=*/false)) return;
   const std::vector<mpq_class> ts = stretch_params(c.sc, c.doc, seg.from, seg.to, da, db);
   for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
     const mpq_class t = (ts[k] + ts[k + 1]) / 2;

@@ -36,6 +36,12 @@ inline std::vector<std::size_t> segments_at(const MapDoc& doc, const P2& q) {
 // Why no visible drawn line is at a point (for messages), from its LineView.
 std::string why_nothing(const LineView& lv);
 
+// The line under segment `seg` (direction s = to - from): the depths at its ends
+// of the edge piece or intersection line with its kind and faces (with
+// hidden_only: one not visible there), from two clean interior points (depth is
+// affine along a screen line). False if not found.
+bool depth_line(const Context& c, const MapSegment& seg, const P2& s, mpq_class& da, mpq_class& db, bool hidden_only);
+
 // Interior sample parameters along a segment, simplest first (1/2, 1/3, 2/3, ...).
 std::vector<mpq_class> parameters();
 
