@@ -1,6 +1,7 @@
 #include "arrangements/drawing.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <map>
@@ -491,6 +492,15 @@ std::vector<std::vector<std::array<double, 2>>> dashed(const std::vector<std::ar
   }
   if (k % 2 == 0 && cur.size() >= 2) out.push_back(std::move(cur));
   return out;
+}
+
+std::string drawing_format(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  const auto dot = path.find_last_of('.');
+  if (path == "-" || dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "svg";
+  std::string ext = path.substr(dot + 1);
+  for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return ext == "svg" || ext == "dxf" || ext == "pdf" || ext == "eps" || ext == "png" ? ext : "";
 }
 
 }  // namespace vismap

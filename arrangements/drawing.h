@@ -120,6 +120,10 @@ struct Drawing {
 };
 Drawing make_drawing(const VisibilityMap& map, const PageOptions& page, bool by_provenance, bool optimize);
 
+// The drawing's format from its file name: "svg" (also standard output, "-",
+// and names without an extension), "dxf", "pdf", "eps", "png", or "" for another.
+std::string drawing_format(const std::string& path);
+
 // A polyline's dashes as sub-polylines (page units, closed: back to its first
 // point), for cut dashes.
 std::vector<std::vector<std::array<double, 2>>> dashed(const std::vector<std::array<double, 2>>& points, bool closed,

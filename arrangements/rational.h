@@ -1,4 +1,5 @@
-// Canonical text for exact rationals: "0", "-3", "7/16" (lowest terms, no "3/1", no "-0").
+// Exact rationals as text, "0", "-3", "7/16" (lowest terms, no "3/1", no "-0"),
+// and as the nearest double.
 #pragma once
 #include <gmpxx.h>
 
@@ -7,5 +8,9 @@
 namespace vismap {
 
 std::string canonical(const mpq_class& q);
+
+// The double nearest to q (ties to even; subnormals and overflow to infinity as
+// IEEE rounding gives them). GMP's own mpq_get_d truncates.
+double nearest_double(const mpq_class& q);
 
 }  // namespace vismap

@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "vismap/vismap.h"
+
 namespace vismap {
 
 struct Point2 {
@@ -16,26 +18,6 @@ struct Point2 {
 };
 bool operator<(const Point2& a, const Point2& b);   // lexicographic (x, then y)
 bool operator==(const Point2& a, const Point2& b);
-
-enum class EdgeKind : std::uint8_t { Border, Silhouette, Crease, Smooth, Intersection };
-const char* to_string(EdgeKind k);
-
-// Rings and segment ends are indices into VisibilityMap::vertices: each vertex
-// is stored (and converted, and written) once, however many rings and
-// segments meet there.
-using Ring = std::vector<std::uint32_t>;
-
-struct Region {
-  int face = -1;                              // input face index
-  Ring outer;                                 // counter-clockwise
-  std::vector<Ring> holes;                    // each clockwise
-};
-
-struct Segment {
-  std::uint32_t from = 0, to = 0;             // from < to (lexicographic)
-  EdgeKind kind = EdgeKind::Border;
-  std::vector<int> faces;                     // ascending
-};
 
 // A hidden line (spec: "hidden"): its own end points, from < to (lexicographic).
 struct HiddenSegment {

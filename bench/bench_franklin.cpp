@@ -33,16 +33,16 @@ namespace {
 constexpr std::uint64_t kSeed = 1980;  // one fixed scene per (N, D): runs are comparable
 
 using Engine = vismap::VisibilityMap (*)(const vismap::Scene&, const vismap::View&,
-                                         const vismap::EngineOptions&);
+                                         const vismap::Options&);
 
 void bm_squares(benchmark::State& state, double depth, Engine engine) {
   const auto n = static_cast<std::size_t>(state.range(0));
   // Built outside the timed loop: only the engine is measured.
   const vismap::Scene scene = vismap::gen::random_squares_depth(n, depth, kSeed);
-  vismap::CameraSpec camera;  // --dir 0,0,-1: orthographic, looking down from +z
+  vismap::Camera camera;  // --dir 0,0,-1: orthographic, looking down from +z
   camera.dir = vismap::Vec3{0, 0, -1};
   const vismap::View view = vismap::make_view(camera, scene);
-  const vismap::EngineOptions options;
+  const vismap::Options options;
 
   std::size_t segments = 0, regions = 0, invalid = 0, profiled = 0;
   double seconds = 0;  // own wall clock: Google Benchmark's inverted rates print as "s"

@@ -41,10 +41,10 @@ using MakeScene = std::function<vismap::Scene(std::size_t n)>;
 void bm_engine(benchmark::State& state, MakeScene make, vismap::Vec3 dir, bool newell) {
   const auto n = static_cast<std::size_t>(state.range(0));
   const vismap::Scene scene = make(n);   // outside the timed loop
-  vismap::CameraSpec camera;
+  vismap::Camera camera;
   camera.dir = dir;
   const vismap::View view = vismap::make_view(camera, scene);
-  const vismap::EngineOptions options;
+  const vismap::Options options;
 
   double seconds = 0;
   std::int64_t fragments = 0, splits = 0, reorders = 0;

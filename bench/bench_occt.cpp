@@ -210,7 +210,7 @@ HLRAlgo_Projector projector_for(const View& view) {
 Result run_vismap(const Scene& scene, const View& view) {
   Result r;
   Timer t;
-  VisibilityMap map = visibility_franklin(scene, view, EngineOptions{});
+  VisibilityMap map = visibility_franklin(scene, view, Options{});
   double len = 0;
   for (const Segment& s : map.segments) {
     const Point2 &from = map.at(s.from), &to = map.at(s.to);
@@ -366,7 +366,7 @@ int main(int argc, char** argv) {
   if (!mesh_path.empty()) {
     return guarded([&] {
       const Scene scene = read_scene(mesh_path);
-      CameraSpec camera;
+      Camera camera;
       camera.dir = dir;
       const View view = make_view(camera, scene);
       const std::string name = mesh_path.substr(mesh_path.find_last_of('/') + 1);
@@ -406,7 +406,7 @@ int main(int argc, char** argv) {
   return guarded([&] {
     for (long n : sizes) {
       const Scene scene = gen::random_squares_depth(static_cast<std::size_t>(n), depth, 1980);
-      CameraSpec camera;
+      Camera camera;
       camera.dir = dir;
       const View view = make_view(camera, scene);
       for (const std::string& e : engines) {

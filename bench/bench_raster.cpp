@@ -79,13 +79,13 @@ double best_time(const std::function<void()>& fn, double budget = 1.0, int max_r
 struct SceneCase {
   std::string name;
   std::function<Scene()> make;
-  CameraSpec camera;
+  Camera camera;
 };
 
 std::vector<SceneCase> all_cases() {
-  CameraSpec down;
+  Camera down;
   down.dir = Vec3{0, 0, -1};
-  CameraSpec across;
+  Camera across;
   across.eye = Vec3{0.5, -0.6, 1.6};
   across.target = Vec3{0.5, 0.5, 0.3};
   across.fov_deg = 60;
@@ -94,9 +94,9 @@ std::vector<SceneCase> all_cases() {
       {"squares1e5", [] { return gen::random_squares_depth(100000, 10, 1980); }, down},
       // Perspective variant: far squares are smaller (eye above one side, looking across).
       {"perspective1e4", [] { return gen::random_squares_depth(10000, 10, 1980); }, across},
-      {"terrain", [] { return gen::terrain(100, 1980); }, CameraSpec{}},   // 20000 triangles, self-occluding
-      {"cubes", [] { return gen::cube_array(12); }, CameraSpec{}},      // 1728 cubes, 10368 quads
-      {"sphere", [] { return gen::sphere(256, 128); }, CameraSpec{}},   // 32768 faces
+      {"terrain", [] { return gen::terrain(100, 1980); }, Camera{}},   // 20000 triangles, self-occluding
+      {"cubes", [] { return gen::cube_array(12); }, Camera{}},      // 1728 cubes, 10368 quads
+      {"sphere", [] { return gen::sphere(256, 128); }, Camera{}},   // 32768 faces
       // Z-fighting: the squares of squares1e4 on 8 planes (z rounded to eighths),
       // seen obliquely, so that coplanar overlaps are everywhere and tilted: the
       // exact rule (lowest index) against depths rounded differently per face.
@@ -107,7 +107,7 @@ std::vector<SceneCase> all_cases() {
          s.file = "random_squares(n=10000,D=10,seed=1980), z rounded down to 1/8";
          return s;
        },
-       CameraSpec{}},
+       Camera{}},
   };
 }
 
@@ -149,7 +149,7 @@ std::vector<std::string> parse_names(const std::string& s) {
   return out;
 }
 
-struct Options {
+struct BenchOptions {
   std::vector<int> R = {256, 512, 1024, 2048, 4096};
   std::vector<std::string> scenes;
   bool lines = true;
@@ -162,7 +162,7 @@ struct Options {
 
 // Runs every method at every R on one scene; `exact_seconds` < 0: no engine time.
 std::vector<Row> run_scene(const std::string& name, const Scene& scene, const View& view, const VisibilityMap& map,
-                           double exact_seconds, const Options& opt) {
+                           double exact_seconds, const BenchOptions& opt) {
   std::vector<Row> rows;
   raster::ScreenScene ss;
   const double t_project = best_time([&] { ss = raster::project(scene, view); });
@@ -303,7 +303,7 @@ int usage() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Options opt;
+  BenchOptions opt;
   for (int k = 1; k < argc; ++k) {
     const std::string a = argv[k];
     auto value = [&]() -> std::string {
@@ -340,7 +340,7 @@ int main(int argc, char** argv) {
       std::vector<SceneCase> cases = all_cases();
       if (!opt.squares.empty()) {
         cases.clear();
-        CameraSpec down;
+        Camera down;
         down.dir = Vec3{0, 0, -1};
         for (int n : opt.squares) {
           const double d = opt.depth;
@@ -361,11 +361,11 @@ int main(int argc, char** argv) {
         // Timed as bench_franklin times it: the map's destruction included.
         const double t_exact = best_time(
             [&] {
-              VisibilityMap m = visibility_franklin(scene, view, EngineOptions{});
+              VisibilityMap m = visibility_franklin(scene, view, vismap::Options{});
               if (m.regions.empty()) std::printf("(empty map)\n");
             },
             10.0, 3);
-        const VisibilityMap map = visibility_franklin(scene, view, EngineOptions{});
+        const VisibilityMap map = visibility_franklin(scene, view, vismap::Options{});
         const auto r = run_scene(c.name, scene, view, map, t_exact, opt);
         rows.insert(rows.end(), r.begin(), r.end());
       }

@@ -208,10 +208,10 @@ int main(int argc, char** argv) {
         for (bool rotate : {false, true}) {
           if (!only.empty() && std::string(cfg.file).find(only) == std::string::npos) { ++seed; continue; }
           const Scene scene = transform(base, eps, scale, rotate, seed++);
-          vismap::CameraSpec cam;
+          vismap::Camera cam;
           cam.dir = Vec3{-0.25, -0.5, -1};   // oblique: every face seen, no edge-on ties by design
           const vismap::View view = vismap::make_view(cam, scene);
-          const vismap::EngineOptions opt;
+          const vismap::Options opt;
           vismap_check::Options copt;
           copt.samples = samples;
           copt.seed = seed;
@@ -223,9 +223,11 @@ int main(int argc, char** argv) {
             std::string out;
             bool ok = in_child(
                 [&] {
-                  vismap::VisibilityMap m = e == "franklin" ? vismap::visibility_franklin(scene, view, opt)
-                                            : e == "newell" ? vismap::visibility_newell(scene, view, opt)
-                                                            : vismap::visibility_franklin_float(scene, view, opt);
+                  // The exact engines through the one dispatch; the float variant is bench-only.
+                  vismap::Options o = opt;
+                  o.algorithm = e == "newell" ? vismap::Algorithm::Newell : vismap::Algorithm::Franklin;
+                  vismap::VisibilityMap m = e == "franklin_float" ? vismap::visibility_franklin_float(scene, view, opt)
+                                                                  : vismap::compute_map(scene, view, o);
                   return vismap::to_json(m);
                 },
                 out);

@@ -1,12 +1,12 @@
 // vismap: exact visibility maps from mesh files.
 //   read scene -> camera -> engine -> JSON / SVG, each output written whole or not at all.
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -22,17 +22,6 @@
 #include "verify/verify_cli.h"
 
 namespace {
-
-// The drawing's format from its file name: "svg" (also standard output and
-// names without an extension), "dxf", "pdf", "eps", "png", or "" for another.
-std::string drawing_format(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  const auto dot = path.find_last_of('.');
-  if (path == "-" || dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "svg";
-  std::string ext = path.substr(dot + 1);
-  for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  return ext == "svg" || ext == "dxf" || ext == "pdf" || ext == "eps" || ext == "png" ? ext : "";
-}
 
 const char* kHelp = R"(usage: vismap SCENE [options]
        vismap verify SCENE MAP.json [options]   (see 'vismap verify --help')
@@ -123,6 +112,15 @@ vismap::Vec3 parse_vec(const std::string& opt, const std::string& s) {
   return {v[0], v[1], v[2]};
 }
 
+// The library's messages name no option; where one is the remedy, the command
+// line says which on a line of its own.
+const char* option_hint(std::string_view message) {
+  if (message.find("the memory limit of") != std::string_view::npos) return "(--max-memory sets the limit)\n";
+  if (message.find("name the format") != std::string_view::npos || message.find("name it: off") != std::string_view::npos)
+    return "(--format names it)\n";
+  return "";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -133,8 +131,8 @@ int main(int argc, char** argv) {
   vismap::ReadLimits limits;
   limits.max_memory = vismap::default_max_memory();
   bool have_scene = false;
-  vismap::CameraSpec cam;
-  vismap::EngineOptions eng;
+  vismap::Camera cam;
+  vismap::Options eng;
   vismap::SvgOptions svg;
   bool stats = false, no_regions = false, style_given = false, shading_given = false;
   vismap::Shading shading;   // --shading, --light: applied over the style
@@ -230,9 +228,9 @@ int main(int argc, char** argv) {
     if (drawing_options && svg_path.empty())
       throw Usage("--style, --line, --page, --scale, --optimize-travel, --svg-data, --shading and --light apply to -o, which is not given");
     if (svg.page.scale > 0 && svg.page.width == 0) throw Usage("--scale needs --page (the drawing's size on paper)");
-    if (!svg_path.empty() && drawing_format(svg_path).empty())
+    if (!svg_path.empty() && vismap::drawing_format(svg_path).empty())
       throw Usage("-o " + svg_path + ": the drawing is written as .svg, .dxf, .pdf, .eps or .png");
-    const std::string fmt = svg_path.empty() ? "" : drawing_format(svg_path);
+    const std::string fmt = svg_path.empty() ? "" : vismap::drawing_format(svg_path);
     if ((fmt == "pdf" || fmt == "eps" || fmt == "png") && !vismap::cairo_available())
       throw Usage("-o " + svg_path + ": this build has no cairo (install libcairo2-dev and rebuild); use .svg or .dxf");
     if (no_regions && json_path.empty()) throw Usage("--no-regions applies to --json, which is not given");
@@ -264,9 +262,7 @@ int main(int argc, char** argv) {
                   !painter_path.empty() ||
                   (json_path.empty() && svg_path.empty());
     std::vector<vismap::PaintedFragment> fragments;
-    vismap::VisibilityMap map = eng.algorithm == vismap::Algorithm::Newell
-                                    ? vismap::visibility_newell(scene, view, eng, painter_path.empty() ? nullptr : &fragments)
-                                    : vismap::visibility_franklin(scene, view, eng);
+    vismap::VisibilityMap map = vismap::compute_map(scene, view, eng, painter_path.empty() ? nullptr : &fragments);
     if (stats) {
       for (const auto& [k, v] : map.stats.counts) std::fprintf(stderr, "  %-36s %lld\n", k.c_str(), static_cast<long long>(v));
       for (const auto& [k, v] : map.stats.seconds) std::fprintf(stderr, "  %-36s %.3f s\n", k.c_str(), v);
@@ -287,7 +283,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "vismap: pen-up travel %.1f %s -> %.1f %s (%zu paths)\n", drawing.travel_before, unit,
                      drawing.travel_after, unit, drawing.chains.size());
       }
-      const std::string fmt = drawing_format(svg_path);
+      const std::string fmt = vismap::drawing_format(svg_path);
       outputs.push_back({svg_path, [&, fmt](const auto& write) {
                            if (fmt == "dxf") write(vismap::to_dxf(drawing));
                            else if (fmt == "svg") write(vismap::to_svg(map, drawing, scene, view, svg));
@@ -303,7 +299,7 @@ int main(int argc, char** argv) {
                    scene_path.c_str(), map.regions.size(), map.segments.size());
     return 0;
   } catch (const vismap::InputError& e) {
-    std::fprintf(stderr, "vismap: %s\n", e.what());
+    std::fprintf(stderr, "vismap: %s\n%s", e.what(), option_hint(e.what()));
     return 1;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "vismap: %s: out of memory (the scene needs more than this machine has; see --max-memory)\n",

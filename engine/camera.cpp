@@ -49,7 +49,7 @@ Frame make_frame(Vec3 d, std::optional<Vec3> up_opt) {
   Vec3 up = balanced(up_opt.value_or(Vec3{0, 0, 1}));
   Vec3 ru = cross(d, up);
   if (norm(ru) == 0) {
-    if (up_opt) throw std::invalid_argument("--up is parallel to the view direction");
+    if (up_opt) throw std::invalid_argument("the up direction is parallel to the view direction");
     up = Vec3{0, 1, 0};
     ru = cross(d, up);
   }
@@ -82,10 +82,10 @@ Box scene_box(const Scene& s) {
 
 }  // namespace
 
-View make_view(const CameraSpec& spec, const Scene& scene) {
+View make_view(const Camera& spec, const Scene& scene) {
   View v;
   const bool persp = spec.eye || spec.target || spec.fov_deg;
-  if (persp && spec.dir) throw std::invalid_argument("--dir (orthographic) cannot be combined with --eye/--target/--fov");
+  if (persp && spec.dir) throw std::invalid_argument("an orthographic direction cannot be combined with a perspective eye, target or field of view");
   if (!persp) {
     // Orthographic; the default looks obliquely down at the scene.
     Vec3 d = spec.dir.value_or(Vec3{-1, -2, -1.5});
@@ -98,15 +98,15 @@ View make_view(const CameraSpec& spec, const Scene& scene) {
   Vec3 center{(b.lo.x + b.hi.x) / 2, (b.lo.y + b.hi.y) / 2, (b.lo.z + b.hi.z) / 2};
   double radius = std::max(norm(sub(b.hi, b.lo)) / 2, 1e-300);
   double fov = spec.fov_deg.value_or(40);
-  if (!(fov > 0 && fov < 180)) throw std::invalid_argument("--fov must be between 0 and 180 degrees");
+  if (!(fov > 0 && fov < 180)) throw std::invalid_argument("the field of view must be between 0 and 180 degrees");
   Vec3 target = spec.target.value_or(center);
   double t = std::tan(fov * M_PI / 360);
   // Without --eye, back off along the default direction until the scene fits.
   Vec3 eye = spec.eye.value_or(
       sub(target, scale(Vec3{-1, -2, -1.5}, (radius / std::sin(fov * M_PI / 360) + radius) / norm(Vec3{-1, -2, -1.5}))));
-  if (!finite(eye) || !finite(target)) throw std::invalid_argument("--eye and --target must be finite");
+  if (!finite(eye) || !finite(target)) throw std::invalid_argument("the eye and the target must be finite");
   Vec3 d = sub(target, eye);
-  if (norm(d) == 0) throw std::invalid_argument("--eye and --target must differ");
+  if (norm(d) == 0) throw std::invalid_argument("the eye and the target must differ");
   Frame fr = make_frame(d, spec.up);
   // Near plane: a small fraction of the eye-target distance, so that only what is
   // (almost) at the eye is clipped. depth = (fz - near)/fz with fz = f.(p - eye).
@@ -126,7 +126,7 @@ View make_view(const CameraSpec& spec, const Scene& scene) {
   for (const auto& row : v.m)
     for (double x : row)
       if (!std::isfinite(x))
-        throw std::invalid_argument("the perspective view matrix overflows doubles (--eye too far from the origin)");
+        throw std::invalid_argument("the perspective view matrix overflows doubles (the eye too far from the origin)");
   return v;
 }
 

@@ -8,14 +8,6 @@
 
 namespace vismap {
 
-struct CameraSpec {
-  std::optional<Vec3> dir;      // orthographic, looking along dir
-  std::optional<Vec3> eye;      // perspective: eye, target, fov
-  std::optional<Vec3> target;
-  std::optional<double> fov_deg;
-  std::optional<Vec3> up;
-};
-
 // Row-major 4x4 of doubles; every entry is taken as an exact rational.
 // World (x,y,z,1) -> (X,Y,Z,W); screen (X/W, Y/W), depth Z/W (smaller = nearer).
 // Perspective: the near plane is depth 0; only points with W > 0 and Z > 0 are kept.
@@ -27,6 +19,6 @@ struct View {
 
 // Throws std::invalid_argument for an impossible camera (zero direction, eye on
 // target, fov outside (0,180)). With nothing given: the whole scene, seen obliquely.
-View make_view(const CameraSpec& spec, const Scene& scene);
+View make_view(const Camera& spec, const Scene& scene);
 
 }  // namespace vismap

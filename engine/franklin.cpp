@@ -51,13 +51,13 @@ std::vector<MapPiece> map_pieces(engine::PieceChunks& pieces, const std::vector<
 #else
 #define VISMAP_FRANKLIN_ENTRY visibility_franklin
 #endif
-VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const EngineOptions& opt) {
+VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const Options& opt) {
   using namespace engine;
   VisibilityMap map = start_map(scene, view);
   Stats& st = map.stats;
   const exact::FilterCounts filter_before = exact::filter_counts;
   PhaseClock clock;
-  EngineOptions run = opt;   // (with the thread count settled, for every step)
+  Options run = opt;   // (with the thread count settled, for every step)
   const int threads = run.threads = thread_count(opt.threads, scene.faces.size());
 
   // 1. Project the scene exactly; skip what cannot be seen (outside, edge-on, back faces).

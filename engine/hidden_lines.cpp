@@ -591,7 +591,7 @@ std::vector<HiddenSegment> hidden_segments(const ScreenScene& ss, const std::vec
 }  // namespace
 VISMAP_KERNEL_END
 
-void add_hidden_lines(const Scene& scene, const View& view, const EngineOptions& options, VisibilityMap& map) {
+void add_hidden_lines(const Scene& scene, const View& view, const Options& options, VisibilityMap& map) {
   PhaseClock clock;
   const int threads = thread_count(options.threads, scene.faces.size());
   // Every facet and edge piece, none culled: back faces hide too, and their edges count.

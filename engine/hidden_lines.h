@@ -13,6 +13,6 @@ namespace vismap::engine {
 // Fills map.hidden (and sets map.has_hidden) from the finished map's segments,
 // in the spec's screen coordinates. Runs without hidden lines never call it, so
 // they cost what they cost without it.
-void add_hidden_lines(const Scene& scene, const View& view, const EngineOptions& options, VisibilityMap& map);
+void add_hidden_lines(const Scene& scene, const View& view, const Options& options, VisibilityMap& map);
 
 }  // namespace vismap::engine

@@ -16,7 +16,7 @@
 
 namespace vismap {
 
-VisibilityMap visibility_newell(const Scene& scene, const View& view, const EngineOptions& opt,
+VisibilityMap visibility_newell(const Scene& scene, const View& view, const Options& opt,
                                 std::vector<PaintedFragment>* painter) {
   using namespace engine;
   VisibilityMap map = start_map(scene, view);

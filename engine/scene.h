@@ -1,42 +1,14 @@
-// The scene as read from a mesh file: vertices and polygons in file order.
-// Header kept free of CGAL so every stage can include it cheaply.
+// The scene as read from a mesh file: vertices and polygons in file order (the
+// types and readers are the library's, include/vismap/vismap.h), and what the
+// readers share: memory estimates and format sniffing. No CGAL.
 #pragma once
 #include <cstdint>
-#include <stdexcept>
 #include <string>
 #include <string_view>
-#include <vector>
+
+#include "vismap/vismap.h"
 
 namespace vismap {
-
-struct Vec3 {
-  double x = 0, y = 0, z = 0;
-};
-
-struct Scene {
-  std::string file;                                 // path as given (messages, JSON)
-  std::vector<Vec3> vertices;                       // finite doubles: the exact input
-  std::vector<std::vector<std::uint32_t>> faces;    // face index = position (file order)
-};
-
-// Bad input. what() is the whole message and already names the file, and the
-// line (or byte offset for binary formats) where there is one: "a.off:12: ...".
-class InputError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-// Refuse counts that cannot be real before allocating for them.
-struct ReadLimits {
-  std::uint64_t max_vertices = 50'000'000;
-  std::uint64_t max_faces = 50'000'000;
-  std::uint64_t max_face_degree = 1'000'000;
-  // Bytes a whole run may use (0: no limit). A file larger than this, or a scene
-  // whose estimated need (estimate_memory) is larger, is refused before anything
-  // is allocated for it, as soon as its counts are known (header formats: from
-  // the header; OBJ and ASCII STL: while reading).
-  std::uint64_t max_memory = 0;
-};
 
 // --- Memory -------------------------------------------------------------------------
 // Estimated peak memory of a run on a scene: the file's bytes plus the engine's
@@ -64,17 +36,6 @@ bool parse_memory_size(std::string_view text, std::uint64_t& bytes);
 
 // "1.9 TiB", "512 MiB", "812 bytes".
 std::string format_bytes(std::uint64_t bytes);
-
-// --- Reading --------------------------------------------------------------------------
-// Reads OFF, OBJ, STL (ASCII/binary) or PLY (ASCII/binary). `format` ("off",
-// "obj", "stl", "ply", any case) forces one; when empty, a file's format comes
-// from its extension (case-insensitive), and standard input's (path "-") from
-// its content (sniff_format). Throws InputError on any malformed input.
-Scene read_scene(const std::string& path, const ReadLimits& limits = {}, const std::string& format = "");
-
-// Same, from bytes already in memory; `format` is "off", "obj", "stl" or "ply".
-Scene read_scene_bytes(std::string_view bytes, const std::string& name,
-                       const std::string& format, const ReadLimits& limits = {});
 
 // The format that bytes are in, judged by their start: "off" (an OFF header),
 // "ply" ("ply" line), "stl" ("solid", or a binary STL whose size matches its

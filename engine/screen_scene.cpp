@@ -406,7 +406,7 @@ void cull_back_faces(ScreenScene& ss, const CurveMaker& M, const View& view, con
 
 }  // namespace
 
-ScreenScene make_screen_scene(const Scene& scene, const View& view, const EngineOptions& opt,
+ScreenScene make_screen_scene(const Scene& scene, const View& view, const Options& opt,
                               Stats& stats, bool latent, bool cull) {
   if (scene.vertices.size() > static_cast<std::size_t>(std::numeric_limits<VertexId>::max()))
     throw std::invalid_argument("the scene has 2^31 vertices or more (vertex ids are 32-bit)");

@@ -122,7 +122,7 @@ struct ScreenScene {
 // needs only those near a drawn one: most of a smooth mesh's edges are not).
 // Without `cull`, back faces of closed solids stay occluders and their edges
 // curves (the hidden lines need every edge).
-ScreenScene make_screen_scene(const Scene& scene, const View& view, const EngineOptions& opt,
+ScreenScene make_screen_scene(const Scene& scene, const View& view, const Options& opt,
                               Stats& stats, bool latent = false, bool cull = true);
 
 // The world facets the screen facets were made from (index for index), where

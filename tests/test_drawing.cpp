@@ -40,10 +40,10 @@ struct Made {
 Made make(const std::string& file, const vismap::Vec3& dir) {
   Made m;
   m.scene = vismap::read_scene((fs::path(VISMAP_DATA_DIR) / file).string());
-  vismap::CameraSpec cam;
+  vismap::Camera cam;
   cam.dir = dir;
   m.view = vismap::make_view(cam, m.scene);
-  vismap::EngineOptions opt;
+  vismap::Options opt;
   opt.hidden = true;
   m.map = vismap::visibility_franklin(m.scene, m.view, opt);
   return m;
@@ -195,10 +195,10 @@ TEST(Dashes, CutPiecesLieOnTheLineAndFollowThePattern) {
 
 TEST(Travel, ReorderingKeepsEveryChainAndShortensTheTravel) {
   vismap::Scene scene = vismap::gen::random_squares_depth(200, 3, 7);
-  vismap::CameraSpec cam;
+  vismap::Camera cam;
   cam.dir = vismap::Vec3{-0.3, -0.5, -1};
   const vismap::View view = vismap::make_view(cam, scene);
-  vismap::EngineOptions opt;
+  vismap::Options opt;
   opt.hidden = true;
   const vismap::VisibilityMap map = vismap::visibility_franklin(scene, view, opt);
   vismap::PageOptions page;

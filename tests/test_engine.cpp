@@ -31,7 +31,7 @@ using vismap_test::expect_checked;
 using vismap_test::slurp;
 
 // The map as JSON without the grid-dependent statistics.
-std::string map_json(const vismap::Scene& scene, const vismap::View& view, const vismap::EngineOptions& opt) {
+std::string map_json(const vismap::Scene& scene, const vismap::View& view, const vismap::Options& opt) {
   vismap::VisibilityMap map = vismap::visibility_franklin(scene, view, opt);
   map.stats = {};
   return vismap::to_json(map);
@@ -121,12 +121,12 @@ INSTANTIATE_TEST_SUITE_P(Degenerate, Corpus, ::testing::ValuesIn(corpus()),
 struct RandomCase {
   std::string name;
   vismap::Scene (*make)(std::uint64_t seed);
-  vismap::CameraSpec camera;
+  vismap::Camera camera;
 };
 
-vismap::CameraSpec ortho(Vec3 d) { vismap::CameraSpec c; c.dir = d; return c; }
-vismap::CameraSpec persp(Vec3 eye, Vec3 target, double fov) {
-  vismap::CameraSpec c;
+vismap::Camera ortho(Vec3 d) { vismap::Camera c; c.dir = d; return c; }
+vismap::Camera persp(Vec3 eye, Vec3 target, double fov) {
+  vismap::Camera c;
   c.eye = eye;
   c.target = target;
   c.fov_deg = fov;
@@ -167,12 +167,12 @@ TEST_P(Random, CheckerAcceptsTheMap) {
   opt.seed = seed;
   const std::string json = map_json(scene, view, {});
   expect_checked(scene, json, opt, rc.name + " seed " + std::to_string(seed));
-  vismap::EngineOptions hidden;
+  vismap::Options hidden;
   hidden.hidden = true;
   const std::string hidden_json = map_json(scene, view, hidden);
   EXPECT_EQ(without_hidden(hidden_json), without_hidden(json)) << rc.name + " seed " + std::to_string(seed) << ": hidden lines changed the map";
   expect_checked(scene, hidden_json, opt, rc.name + " seed " + std::to_string(seed) + " (hidden lines)");
-  vismap::EngineOptions lines_only;
+  vismap::Options lines_only;
   lines_only.regions = false;
   EXPECT_EQ(segments_of(map_json(scene, view, lines_only)), segments_of(json))
       << rc.name + " seed " + std::to_string(seed) << ": the lines alone differ from the whole map's";
@@ -192,10 +192,10 @@ INSTANTIATE_TEST_SUITE_P(Scenes, Random,
 // stretches of front ones, and hidden intersection lines.
 TEST(HiddenLines, CheckerRefusesEachMutation) {
   const vismap::Scene scene = vismap::read_scene((fs::path(VISMAP_DATA_DIR) / "interpenetrating_boxes.off").string());
-  vismap::CameraSpec cam;
+  vismap::Camera cam;
   cam.dir = Vec3{-1, -2, -4};
   const vismap::View view = vismap::make_view(cam, scene);
-  vismap::EngineOptions opt;
+  vismap::Options opt;
   opt.hidden = true;
   const vismap::VisibilityMap map = vismap::visibility_franklin(scene, view, opt);
   ASSERT_GE(map.hidden.size(), 4u);
@@ -255,7 +255,7 @@ TEST(GridIndependence, SameMapForEveryGridConstant) {
     vismap::Scene scene = vismap::gen::random_squares_depth(300, 6, seed);
     vismap::gen::append_scene(scene, vismap::gen::interpenetrating_boxes(6, seed));
     vismap::View view = vismap::make_view(ortho({-0.2, -0.3, -1}), scene);
-    vismap::EngineOptions opt;
+    vismap::Options opt;
     opt.grid_c = 4;
     const std::string reference = map_json(scene, view, opt);
     for (double c : {0.3, 1.0, 2.5, 9.0}) {
@@ -277,12 +277,12 @@ TEST(Threads, SameMapForEveryThreadCount) {
   const vismap::Scene terrain = vismap::gen::terrain(40, 3);
   struct View {
     const vismap::Scene* scene;
-    vismap::CameraSpec camera;
+    vismap::Camera camera;
   };
   const std::vector<View> views = {{&squares, ortho({-0.2, -0.3, -1})},
                                    {&squares, persp({0.2, 0.3, 2.5}, {0.5, 0.5, 0.5}, 50)},
                                    {&terrain, ortho({-1, -0.5, -0.7})}};
-  auto json_of = [](const vismap::Scene& scene, const vismap::View& view, vismap::EngineOptions opt) {
+  auto json_of = [](const vismap::Scene& scene, const vismap::View& view, vismap::Options opt) {
     vismap::VisibilityMap map = vismap::visibility_franklin(scene, view, opt);
     map.stats.seconds.clear();
     return vismap::to_json(map);
@@ -290,7 +290,7 @@ TEST(Threads, SameMapForEveryThreadCount) {
   for (std::size_t v = 0; v < views.size(); ++v) {
     const vismap::View view = vismap::make_view(views[v].camera, *views[v].scene);
     for (bool regions : {true, false}) {
-      vismap::EngineOptions opt;
+      vismap::Options opt;
       opt.regions = regions;
       opt.hidden = !regions;   // (the hidden lines' pass has threads of its own)
       opt.threads = 1;
@@ -355,7 +355,7 @@ TEST(DoubleRange, PerspectiveMapIsTheSameAtEveryPowerOfTwoScale) {
   auto map_at = [&](int k) {
     vismap::Scene s = base;
     for (Vec3& v : s.vertices) v = scaled(v, k);
-    vismap::CameraSpec cam;
+    vismap::Camera cam;
     cam.eye = scaled({-4, -6, 9}, k);
     cam.target = scaled({3, 3, 1}, k);
     cam.fov_deg = 50;

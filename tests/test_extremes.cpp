@@ -32,15 +32,15 @@ std::string drawing_of(const std::string& json) {
   return json.substr(from, to - from);
 }
 
-vismap::CameraSpec ortho(Vec3 d) {
-  vismap::CameraSpec c;
+vismap::Camera ortho(Vec3 d) {
+  vismap::Camera c;
   c.dir = d;
   return c;
 }
 
 // Both engines' maps of one scene and view: the same, and accepted by the checker.
 // Returns the map.
-vismap::VisibilityMap both_engines(const vismap::Scene& scene, const vismap::CameraSpec& cam, const std::string& what,
+vismap::VisibilityMap both_engines(const vismap::Scene& scene, const vismap::Camera& cam, const std::string& what,
                                    int samples = 300) {
   const vismap::View view = vismap::make_view(cam, scene);
   vismap::VisibilityMap f = vismap::visibility_franklin(scene, view, {});
@@ -79,7 +79,7 @@ TEST(DoubleRange, BothEnginesAgreeAtEveryScaleAndOffset) {
     vismap::Scene s = base;
     for (Vec3& v : s.vertices) v = moved(v, mv.scale, mv.offset);
     const std::string what = "scale " + std::to_string(mv.scale) + " offset " + std::to_string(mv.offset);
-    vismap::CameraSpec persp;
+    vismap::Camera persp;
     persp.eye = moved({-4, -6, 9}, mv.scale, mv.offset);
     persp.target = moved({3, 3, 1}, mv.scale, mv.offset);
     persp.fov_deg = 50;
@@ -108,7 +108,7 @@ TEST(DoubleRange, FarFromTheOriginTheWorkIsTheSame) {
   vismap::Scene far = here;
   for (Vec3& v : far.vertices) v = {v.x + 5e6, v.y + 3e6, v.z};
   auto work = [](const vismap::Scene& s) {
-    vismap::EngineOptions one;
+    vismap::Options one;
     one.threads = 1;
     return vismap::visibility_franklin(s, vismap::make_view(ortho({-1, -2, -3}), s), one).stats;
   };
@@ -124,7 +124,7 @@ TEST(DoubleRange, FarFromTheOriginTheWorkIsTheSame) {
 // down to every vertex.
 TEST(DoubleRange, PowerOfTwoScaleScalesTheOrthographicMap) {
   const vismap::Scene base = boxes();
-  const vismap::CameraSpec cam = ortho({-1, -2, -3});
+  const vismap::Camera cam = ortho({-1, -2, -3});
   const vismap::VisibilityMap reference = vismap::visibility_franklin(base, vismap::make_view(cam, base), {});
   ASSERT_FALSE(reference.segments.empty());
   for (int k : {-1000, -500, -200, 200, 500, 1000}) {
@@ -199,7 +199,7 @@ TEST(ManyCorners, CylinderWithThousandCornerCaps) {
   both_engines(s, ortho({-1, -2, -3}), "cylinder 1000 oblique", 200);
   // In perspective the engines only (the checker takes 10 s a view here: it
   // asks all 6000 sides at each of its 6000 points on lines).
-  vismap::CameraSpec persp;
+  vismap::Camera persp;
   persp.eye = {2.5, -3, 3.5};
   persp.target = {0, 0, 1};
   persp.fov_deg = 45;

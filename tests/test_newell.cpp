@@ -102,13 +102,13 @@ vismap::Scene lattice(int kind, std::uint64_t seed) {
 
 const Vec3 kLatticeViews[] = {{0, 0, -1}, {-1, -2, -1.5}, {-0.3, -0.5, -1}, {1, 0, -1}, {0, -1, 0}};
 
-vismap::CameraSpec ortho(Vec3 d) {
-  vismap::CameraSpec c;
+vismap::Camera ortho(Vec3 d) {
+  vismap::Camera c;
   c.dir = d;
   return c;
 }
-vismap::CameraSpec persp(Vec3 eye, Vec3 target, double fov) {
-  vismap::CameraSpec c;
+vismap::Camera persp(Vec3 eye, Vec3 target, double fov) {
+  vismap::Camera c;
   c.eye = eye;
   c.target = target;
   c.fov_deg = fov;
@@ -118,7 +118,7 @@ vismap::CameraSpec persp(Vec3 eye, Vec3 target, double fov) {
 struct RandomCase {
   std::string name;
   vismap::Scene (*make)(std::uint64_t seed);
-  vismap::CameraSpec camera;
+  vismap::Camera camera;
 };
 
 std::vector<RandomCase> random_cases() {
@@ -198,7 +198,7 @@ TEST_P(Random, SameMapAsFranklinAndCheckerAccepts) {
   scene.file = rc.name;
   const vismap::View view = vismap::make_view(rc.camera, scene);
   const std::string what = rc.name + " seed " + std::to_string(seed);
-  vismap::EngineOptions hidden;
+  vismap::Options hidden;
   hidden.hidden = true;
   const std::string jn = map_json(vismap::visibility_newell(scene, view, hidden));
   EXPECT_EQ(jn, map_json(vismap::visibility_franklin(scene, view, hidden))) << what << ": the engines' maps differ";
@@ -225,7 +225,7 @@ TEST(Differential, ManySeeds) {
     for (std::uint64_t seed = 10; seed < 18; ++seed) {
       vismap::Scene scene = cases[c].make(seed);
       const vismap::View view = vismap::make_view(cases[c].camera, scene);
-      vismap::EngineOptions hidden;
+      vismap::Options hidden;
       hidden.hidden = true;
       EXPECT_EQ(map_json(vismap::visibility_newell(scene, view, hidden)),
                 map_json(vismap::visibility_franklin(scene, view, hidden)))
@@ -359,7 +359,7 @@ double ring_distance(const Ring& r, double x, double y) {
 // Paints the fragments back to front on a res x res raster over the map and
 // compares, at every pixel centre farther than a small margin from any fragment
 // side and any region boundary, the last-painted face with the map's region.
-void expect_painter_matches_map(const vismap::Scene& scene, const vismap::CameraSpec& cam, const std::string& what) {
+void expect_painter_matches_map(const vismap::Scene& scene, const vismap::Camera& cam, const std::string& what) {
   const vismap::View view = vismap::make_view(cam, scene);
   std::vector<vismap::PaintedFragment> frags;
   const vismap::VisibilityMap map = vismap::visibility_newell(scene, view, {}, &frags);

@@ -29,13 +29,13 @@ using vismap::View;
 namespace raster = vismap::raster;
 
 View ortho(const Scene& scene, Vec3 dir) {
-  vismap::CameraSpec c;
+  vismap::Camera c;
   c.dir = dir;
   return vismap::make_view(c, scene);
 }
 
 View persp(const Scene& scene, Vec3 eye, Vec3 target, double fov, Vec3 up = {0, 0, 1}) {
-  vismap::CameraSpec c;
+  vismap::Camera c;
   c.eye = eye;
   c.target = target;
   c.fov_deg = fov;

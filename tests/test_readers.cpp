@@ -580,9 +580,9 @@ TEST(Files, ErrorsNameThePath) {
   EXPECT_EQ(error(folder.string()), folder.string() + ": is a directory, not a mesh file");
 
   const std::string txt = dir.write("m.txt", "OFF\n0 0 0\n");
-  EXPECT_EQ(error(txt), txt + ": unknown file extension '.txt'; expected .off, .obj, .stl or .ply (or use --format)");
+  EXPECT_EQ(error(txt), txt + ": unknown file extension '.txt'; expected .off, .obj, .stl or .ply (or name the format)");
   const std::string none = dir.write("mesh", "OFF\n0 0 0\n");
-  EXPECT_EQ(error(none), none + ": no file extension; expected .off, .obj, .stl or .ply (or use --format)");
+  EXPECT_EQ(error(none), none + ": no file extension; expected .off, .obj, .stl or .ply (or name the format)");
 
   const std::string bad = dir.write("bad.off", kOffHead + "3 0 1 7\n");
   EXPECT_EQ(error(bad), bad + ":6: face 0 has vertex index 7, but there are only 3 vertices");

@@ -212,7 +212,7 @@ TEST(Limits, AHeaderClaimingABillionFacesIsRefusedUpFront) {
   // The size it would need and the limit, both in the message.
   EXPECT_NE(r.err.find(huge + ":2: the header's 3 vertices and 1000000000 faces would need about "),
             std::string::npos) << r.err;
-  EXPECT_NE(r.err.find(" TiB of memory, more than the limit of 8.0 GiB (set with --max-memory)"), std::string::npos)
+  EXPECT_NE(r.err.find(" TiB of memory, more than the memory limit of 8.0 GiB\n(--max-memory sets the limit)"), std::string::npos)
       << r.err;
   EXPECT_LT(r.cpu_seconds, 1.0);
   EXPECT_TRUE(out.names().empty());
@@ -233,11 +233,11 @@ TEST(Limits, TheMemoryLimitAppliesToEveryFormatAndToTheFileSize) {
   const std::string off = in.write("ok.off", kOff);
   EXPECT_EQ(vismap_test::run({kBin, off, "--max-memory", "1G", "--json", out.file("m.json")}, scratch.path()).status, 0);
   fs::remove(out.file("m.json"));
-  refused(off, "1M", "more than the limit of 1.0 MiB");
-  refused(in.write("ok.obj", kObj), "1M", "more than the limit of 1.0 MiB");
-  refused(in.write("ok.stl", kStl), "1M", "more than the limit of 1.0 MiB");
-  refused(in.write("ok.ply", kPly), "1M", "more than the limit of 1.0 MiB");
-  refused(in.write("b.stl", binary_stl(1, 1)), "1M", "more than the limit of 1.0 MiB");
+  refused(off, "1M", "more than the memory limit of 1.0 MiB");
+  refused(in.write("ok.obj", kObj), "1M", "more than the memory limit of 1.0 MiB");
+  refused(in.write("ok.stl", kStl), "1M", "more than the memory limit of 1.0 MiB");
+  refused(in.write("ok.ply", kPly), "1M", "more than the memory limit of 1.0 MiB");
+  refused(in.write("b.stl", binary_stl(1, 1)), "1M", "more than the memory limit of 1.0 MiB");
   // A file bigger than the limit is not even read.
   refused(in.write("big.off", kOff + std::string(3 << 20, '#')), "2M", "more than the memory limit of 2.0 MiB");
 }

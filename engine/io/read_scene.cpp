@@ -35,8 +35,7 @@ const char* const kStdinName = "<stdin>";
 
 [[noreturn]] void too_big(const std::string& name, std::uint64_t size, bool at_least, const ReadLimits& limits) {
   io::fail(name, io::cat(at_least ? "more than " : "", format_bytes(size), " (", size,
-                         " bytes) to read, more than the memory limit of ", format_bytes(limits.max_memory),
-                         " (set with --max-memory)"));
+                         " bytes) to read, more than the memory limit of ", format_bytes(limits.max_memory)));
 }
 
 // Reads until EOF into `data` (which holds `used` bytes so far), doubling it;
@@ -121,8 +120,7 @@ Scene read_scene(const std::string& path, const ReadLimits& limits, const std::s
     if (fmt.empty()) fmt = sniff_format(data);
     if (fmt.empty()) {
       io::fail(kStdinName, data.empty() ? "empty input; expected an OFF, OBJ, STL or PLY mesh"
-                                        : "cannot tell the mesh format from the content; name it with --format "
-                                          "off|obj|stl|ply");
+                                        : "cannot tell the mesh format from the content; name it: off, obj, stl or ply");
     }
     return read_scene_bytes(data, kStdinName, fmt, limits);
   }
@@ -131,9 +129,9 @@ Scene read_scene(const std::string& path, const ReadLimits& limits, const std::s
     // Check the extension before touching the file: a wrong name fails fast.
     const std::string ext = lowercase(std::filesystem::path(path).extension().string());
     if (ext.empty() || !reader_for(ext.substr(1))) {
-      io::fail(path, ext.empty() ? std::string("no file extension; expected .off, .obj, .stl or .ply (or use --format)")
+      io::fail(path, ext.empty() ? std::string("no file extension; expected .off, .obj, .stl or .ply (or name the format)")
                                  : io::cat("unknown file extension ", io::quote(ext),
-                                           "; expected .off, .obj, .stl or .ply (or use --format)"));
+                                           "; expected .off, .obj, .stl or .ply (or name the format)"));
     }
     fmt = ext.substr(1);
   } else if (!reader_for(fmt)) {

@@ -48,8 +48,8 @@ std::string memory_problem(const ReadLimits& limits, std::uint64_t file_bytes, s
                            std::uint64_t faces, std::uint64_t corners, std::string_view what) {
   if (!over_memory(limits, file_bytes, vertices, faces, corners)) return {};
   const std::uint64_t need = estimate_memory(file_bytes, vertices, faces, corners);
-  return cat(what, " would need about ", format_bytes(need), " of memory, more than the limit of ",
-             format_bytes(limits.max_memory), " (set with --max-memory)");
+  return cat(what, " would need about ", format_bytes(need), " of memory, more than the memory limit of ",
+             format_bytes(limits.max_memory));
 }
 
 // --- Numbers --------------------------------------------------------------------

@@ -159,8 +159,9 @@ void check_pipeline(const std::uint8_t* data, std::size_t size, Engines engines)
                               (t.options.crease_deg != 30 ? " --crease " + num(t.options.crease_deg) : "") + "\n";
     std::string json;
     try {
-      vismap::VisibilityMap map = newell ? vismap::visibility_newell(t.scene, view, t.options)
-                                         : vismap::visibility_franklin(t.scene, view, t.options);
+      vismap::Options o = t.options;
+      o.algorithm = newell ? vismap::Algorithm::Newell : vismap::Algorithm::Franklin;
+      vismap::VisibilityMap map = vismap::compute_map(t.scene, view, o);
       map.stats = {};
       json = vismap::to_json(map);
     } catch (const std::exception& e) {
@@ -184,7 +185,7 @@ void check_pipeline(const std::uint8_t* data, std::size_t size, Engines engines)
     maps.emplace_back(engine, json);
     if (newell) continue;
     // Franklin again with one option changed (`flag`, as the CLI spells it): its JSON.
-    auto franklin_with = [&](const vismap::EngineOptions& o, const std::string& flag) {
+    auto franklin_with = [&](const vismap::Options& o, const std::string& flag) {
       try {
         vismap::VisibilityMap map = vismap::visibility_franklin(t.scene, view, o);
         map.stats = {};
@@ -195,13 +196,13 @@ void check_pipeline(const std::uint8_t* data, std::size_t size, Engines engines)
     };
     // On one thread and on three: the same map, byte for byte.
     for (int threads : {1, 3}) {
-      vismap::EngineOptions o = t.options;
+      vismap::Options o = t.options;
       o.threads = threads;
       const std::string flag = "--threads " + std::to_string(threads);
       if (franklin_with(o, flag) != json) die(flag + " changed the map" + repro + "(compare with " + flag + ")\n");
     }
     // The lines alone (--no-regions): Franklin computes less, and must write the same segments.
-    vismap::EngineOptions lines_only = t.options;
+    vismap::Options lines_only = t.options;
     lines_only.regions = false;
     const std::string lines = franklin_with(lines_only, "--no-regions");
     auto segments = [](const std::string& j) { return j.substr(j.find("\"segments\"")); };

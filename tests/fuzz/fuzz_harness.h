@@ -29,8 +29,8 @@ void check_reader(const std::uint8_t* data, std::size_t size, const std::string&
 // scaled by 2^k, k in -1000..1000.
 struct TinyCase {
   vismap::Scene scene;
-  vismap::CameraSpec camera;
-  vismap::EngineOptions options;
+  vismap::Camera camera;
+  vismap::Options options;
   std::string args;            // the vismap command-line options for the camera and lines
 };
 TinyCase decode_tiny(const std::uint8_t* data, std::size_t size);
