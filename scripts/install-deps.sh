@@ -2,8 +2,8 @@
 # Installs the Debian packages vismap needs, only those missing.
 set -euo pipefail
 pkgs=(cmake g++ make pkg-config libcgal-dev libgmp-dev libmpfr-dev libboost-dev libgtest-dev libbenchmark-dev
-      libmimalloc-dev libcairo2-dev python3
-      python3-ezdxf poppler-utils librsvg2-bin)   # (the tests read the drawings back with these)
+      libmimalloc-dev libcairo2-dev python3 python3-dev pybind11-dev python3-numpy   # (the Python module)
+      python3-pytest python3-matplotlib python3-ezdxf poppler-utils librsvg2-bin)   # (the tests: pytest, the README's example, drawings read back)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
