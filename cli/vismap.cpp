@@ -26,9 +26,9 @@ namespace {
 const char* kHelp = R"(usage: vismap SCENE [options]
        vismap verify SCENE MAP.json [options]   (see 'vismap verify --help')
 
-Computes the exact visibility map of a polygon scene (OFF, OBJ, STL, PLY) and
-writes it as exact JSON and/or a drawing (SVG, DXF, PDF, EPS, PNG). SCENE "-" is
-standard input.
+Computes the exact visibility map of a polygon scene (OFF, OBJ, STL, PLY, or a
+.vmscene.json, whose faces may have holes) and writes it as exact JSON and/or a
+drawing (SVG, DXF, PDF, EPS, PNG). SCENE "-" is standard input.
 
 outputs (files are written whole or not at all; "-" is standard output):
   -o, --svg FILE       the drawing, by FILE's extension: .svg (the default;
@@ -77,8 +77,9 @@ engine:
   --stats              print statistics on stderr and add phase timings to the
                        JSON (without it the JSON is byte-for-byte reproducible)
 input:
-  --format F           off, obj, stl or ply: SCENE's format (default: by its
-                       extension; for standard input, by its content)
+  --format F           off, obj, stl, ply or vmscene: SCENE's format (default:
+                       by its extension, .json for a vmscene; for standard
+                       input, by its content)
   --max-memory SIZE    refuse, before reading it, a scene that would need more
                        memory than SIZE (e.g. 512M, 8G; default: the physical
                        memory, or a lower cgroup or ulimit -v limit)
@@ -206,8 +207,8 @@ int main(int argc, char** argv) {
       else if (a == "--stats") stats = true;
       else if (a == "--format") {
         format = value();
-        if (format != "off" && format != "obj" && format != "stl" && format != "ply")
-          throw Usage("--format expects off, obj, stl or ply, got '" + format + "'");
+        if (format != "off" && format != "obj" && format != "stl" && format != "ply" && format != "vmscene")
+          throw Usage("--format expects off, obj, stl, ply or vmscene, got '" + format + "'");
       } else if (a == "--max-memory") {
         const std::string& v = value();
         if (!vismap::parse_memory_size(v, limits.max_memory))

@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cstring>
+#include <exception>
 
+#include "engine/holed_faces.h"
 #include "engine/parallel.h"
 
 namespace vismap::engine {
@@ -194,6 +196,10 @@ void facets_of_faces(const Scene& scene, const std::vector<std::uint32_t>& canon
   std::vector<std::uint32_t> ids;
   std::vector<Q3> p;
   for (std::size_t f = static_cast<std::size_t>(r.begin); f < static_cast<std::size_t>(r.end); ++f) {
+    if (!scene.holes_of(f).empty()) {
+      facets_of_holed_face(scene, canon, f, out);
+      continue;
+    }
     // Drop consecutive repeats (cyclically): they are the same vertex.
     ids.clear();
     p.clear();
@@ -256,15 +262,24 @@ WorldFacets make_world_facets(const Scene& scene, int threads) {
   // Chunks of faces in parallel, joined in order (their counts beside them).
   const int nfaces = static_cast<int>(scene.faces.size()), size = 4096, chunks = chunk_count(nfaces, size);
   std::vector<WorldFacets> counts(static_cast<std::size_t>(chunks));
+  // A bad face with holes throws; the first in face order is the one reported,
+  // whatever the thread count.
+  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(chunks));
   WorldFacets out;
   out.facets.reserve(scene.faces.size());
   parallel_append(out.facets, chunks, threads, [&](int k, std::vector<WorldFacet>& facets) {
     WorldFacets c;
     c.facets.reserve(static_cast<std::size_t>(size));
-    facets_of_faces(scene, canon, chunk(k, nfaces, size), c);
+    try {
+      facets_of_faces(scene, canon, chunk(k, nfaces, size), c);
+    } catch (...) {
+      errors[static_cast<std::size_t>(k)] = std::current_exception();
+    }
     facets = std::move(c.facets);
     counts[static_cast<std::size_t>(k)] = std::move(c);
   });
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
   for (const WorldFacets& c : counts) {
     out.degenerate += c.degenerate;
     out.nonplanar += c.nonplanar;

@@ -1,6 +1,7 @@
 // Stage 1: input polygons -> convex planar facets in world space.
 // Degenerate polygons are dropped (counted); non-convex planar polygons are
-// triangulated by ear clipping, non-planar ones by a fan from the first vertex.
+// triangulated by ear clipping, non-planar ones by a fan from the first vertex,
+// polygons with holes by a constrained triangulation (engine/holed_faces.h).
 // Every facet keeps its polygon's index; diagonals are marked internal.
 #pragma once
 #include <cstdint>
@@ -32,6 +33,7 @@ struct WorldFacets {
 
 // Vertex ids in facets are canonical: equal coordinates give one id, so that
 // polygon soups share end points by identity. Chunks of faces on `threads` threads.
+// Throws InputError for a face with holes that is not what Scene allows.
 WorldFacets make_world_facets(const Scene& scene, int threads = 1);
 
 }  // namespace vismap::engine

@@ -32,25 +32,43 @@ std::optional<vismap::Vec3> vec3(const std::optional<std::vector<double>>& v, co
   return vismap::Vec3{(*v)[0], (*v)[1], (*v)[2]};
 }
 
+// One ring of vertex indices, each checked against the vertex count.
+vismap::IndexRing ring_from(const py::handle& ring, std::size_t vertices, const std::string& what) {
+  vismap::IndexRing r;
+  for (const py::handle i : ring) {
+    const long long k = py::cast<long long>(i);
+    if (k < 0 || k >= static_cast<long long>(vertices))
+      throw py::index_error(what + " names vertex " + std::to_string(k) + ", but there are " +
+                            std::to_string(vertices) + " vertices");
+    r.push_back(static_cast<std::uint32_t>(k));
+  }
+  return r;
+}
+
 // A scene from numpy: vertices N x 3, faces an F x k integer array or a list of
-// index lists (polygons of any size).
-vismap::Scene scene_from(const Array& vertices, const py::object& faces, const std::string& name) {
+// index lists (polygons of any size); holes, optional, a dict from a face's
+// index to its list of hole rings.
+vismap::Scene scene_from(const Array& vertices, const py::object& faces, const py::object& holes,
+                         const std::string& name) {
   if (vertices.ndim() != 2 || vertices.shape(1) != 3) throw py::value_error("vertices must be an N x 3 array");
   vismap::Scene s;
   s.file = name;
   auto v = vertices.unchecked<2>();
   s.vertices.reserve(v.shape(0));
   for (py::ssize_t i = 0; i < v.shape(0); ++i) s.vertices.push_back({v(i, 0), v(i, 1), v(i, 2)});
-  for (const py::handle face : faces) {
-    std::vector<std::uint32_t> f;
-    for (const py::handle i : face) {
-      const long long k = py::cast<long long>(i);
-      if (k < 0 || k >= static_cast<long long>(s.vertices.size()))
-        throw py::index_error("face " + std::to_string(s.faces.size()) + " names vertex " + std::to_string(k) +
-                              ", but there are " + std::to_string(s.vertices.size()) + " vertices");
-      f.push_back(static_cast<std::uint32_t>(k));
+  for (const py::handle face : faces)
+    s.faces.push_back(ring_from(face, s.vertices.size(), "face " + std::to_string(s.faces.size())));
+  if (holes.is_none()) return s;
+  for (const auto& [key, rings] : py::cast<py::dict>(holes)) {
+    const long long f = py::cast<long long>(key);
+    if (f < 0 || f >= static_cast<long long>(s.faces.size()))
+      throw py::index_error("holes name face " + std::to_string(f) + ", but there are " +
+                            std::to_string(s.faces.size()) + " faces");
+    if (s.holes.size() <= static_cast<std::size_t>(f)) s.holes.resize(static_cast<std::size_t>(f) + 1);
+    for (const py::handle ring : rings) {
+      const std::string what = "hole " + std::to_string(s.holes[f].size()) + " of face " + std::to_string(f);
+      s.holes[f].push_back(ring_from(ring, s.vertices.size(), what));
     }
-    s.faces.push_back(std::move(f));
   }
   return s;
 }
@@ -140,13 +158,21 @@ PYBIND11_MODULE(vismap, mod) {
   mod.doc() = "Exact visibility maps of polygon scenes: visible regions, visible and hidden lines, drawings.";
   py::register_exception<vismap::InputError>(mod, "InputError", PyExc_ValueError);
 
-  py::class_<vismap::Scene>(mod, "Scene", "Vertices (N x 3 doubles) and polygons (lists of vertex indices).")
-      .def(py::init([](const Array& vertices, const py::object& faces, const std::string& name) {
-             return scene_from(vertices, faces, name);
-           }),
-           py::arg("vertices"), py::arg("faces"), py::arg("name") = "")
+  py::class_<vismap::Scene>(mod, "Scene",
+                            "Vertices (N x 3 doubles), polygons (lists of vertex indices) and, optionally, "
+                            "holes: {face index: [hole ring, ...]} (a face with holes must be planar).")
+      .def(py::init([](const Array& vertices, const py::object& faces, const py::object& holes,
+                       const std::string& name) { return scene_from(vertices, faces, holes, name); }),
+           py::arg("vertices"), py::arg("faces"), py::arg("holes") = py::none(), py::arg("name") = "")
       .def_property_readonly("vertices", &scene_vertices)
       .def_property_readonly("faces", [](const vismap::Scene& s) { return s.faces; })
+      .def_property_readonly("holes",
+                             [](const vismap::Scene& s) {
+                               py::dict out;
+                               for (std::size_t f = 0; f < s.holes.size(); ++f)
+                                 if (!s.holes[f].empty()) out[py::int_(f)] = s.holes[f];
+                               return out;
+                             })
       .def_readonly("name", &vismap::Scene::file)
       .def("__repr__", [](const vismap::Scene& s) {
         return "<vismap.Scene " + (s.file.empty() ? std::string() : s.file + ": ") + std::to_string(s.vertices.size()) +

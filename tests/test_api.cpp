@@ -187,6 +187,74 @@ TEST(Api, SceneBuiltInCode) {
   EXPECT_EQ(m.scene_faces(), 2u);
 }
 
+// A 4 x 4 square at z = 0 with a hole given by `hole` (vertex ids 4 on), seen from above.
+vismap::Scene plate(std::vector<vismap::Vec3> hole_corners, std::vector<vismap::IndexRing> holes) {
+  vismap::Scene s;
+  s.file = "plate";
+  s.vertices = {{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}};
+  s.vertices.insert(s.vertices.end(), hole_corners.begin(), hole_corners.end());
+  s.faces = {{0, 1, 2, 3}};
+  s.holes = {std::move(holes)};
+  return s;
+}
+
+// The map's JSON up to its free-form stats (which count the triangles made).
+std::string json_from_above(const vismap::Scene& s) {
+  vismap::Camera camera;
+  camera.dir = vismap::Vec3{-1, -2, -3};
+  vismap::Options options;
+  options.hidden = true;
+  const std::string json = vismap::compute(s, camera, options).to_json();
+  return json.substr(0, json.find("\"stats\""));
+}
+
+TEST(Holes, AHoleIsPartOfTheMapWhicheverWayItTurnsAndWhereverItStarts) {
+  const std::vector<vismap::Vec3> square{{1, 1, 0}, {2, 1, 0}, {2, 2, 0}, {1, 2, 0}};
+  const std::string ccw = json_from_above(plate(square, {{4, 5, 6, 7}}));
+  EXPECT_EQ(json_from_above(plate(square, {{7, 6, 5, 4}})), ccw);
+  EXPECT_EQ(json_from_above(plate(square, {{6, 7, 4, 5}})), ccw);
+  // One region with one hole of four corners; the hole's four sides are border lines.
+  vismap::Camera camera;
+  camera.dir = vismap::Vec3{0, 0, -1};
+  const vismap::Map m = vismap::compute(plate(square, {{4, 5, 6, 7}}), camera);
+  ASSERT_EQ(m.regions().size(), 1u);
+  ASSERT_EQ(m.regions()[0].holes.size(), 1u);
+  EXPECT_EQ(m.regions()[0].holes[0].size(), 4u);
+  EXPECT_EQ(m.segments().size(), 8u);
+  // Without the hole, the square alone.
+  EXPECT_NE(json_from_above(plate(square, {})), ccw);
+}
+
+TEST(Holes, WhatAFaceWithHolesMayNotBeIsRefusedNamingTheFace) {
+  auto refusal = [](const vismap::Scene& s) -> std::string {
+    try {
+      json_from_above(s);
+    } catch (const vismap::InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  auto expect = [&](const vismap::Scene& s, const std::string& needle) {
+    const std::string what = refusal(s);
+    EXPECT_EQ(what.rfind("plate: face 0 ", 0), 0u) << what;
+    EXPECT_NE(what.find(needle), std::string::npos) << what;
+  };
+  expect(plate({{1, 1, 0}, {2, 1, 0}, {2, 2, 0.5}, {1, 2, 0}}, {{4, 5, 6, 7}}), "must be planar");
+  expect(plate({{1, 1, 0}, {2, 1, 0}, {3, 1, 0}}, {{4, 5, 6}}), "hole 0 with no area");
+  expect(plate({{5, 1, 0}, {6, 1, 0}, {6, 2, 0}}, {{4, 5, 6}}), "not inside the outer ring");                 // outside
+  expect(plate({{1, 1, 0}, {3, 1, 0}, {3, 3, 0}, {1.5, 1.5, 0}, {2.5, 1.5, 0}, {2.5, 2.5, 0}},
+               {{4, 5, 6}, {7, 8, 9}}), "cross");                                                           // nested
+  expect(plate({{1, 1, 0}, {5, 1, 0}, {5, 2, 0}}, {{4, 5, 6}}), "cross");                                   // crossing
+  expect(plate({{1, 1, 0}, {2, 1, 0}, {1, 2, 0}, {2, 2, 0}}, {{4, 5, 6, 7}}), "crosses or touches itself");   // a bow tie
+  expect(plate({{2, 0, 0}, {3, 1, 0}, {1, 1, 0}}, {{4, 5, 6}}), "touches");                                 // on an edge
+  // Sharing a corner with the outer ring is allowed; so is a degenerate outer ring (dropped).
+  EXPECT_EQ(refusal(plate({{3, 3, 0}, {3.5, 3, 0}}, {{2, 4, 5}})), "");
+  vismap::Scene flat = plate({{1, 1, 0}, {2, 1, 0}, {2, 2, 0}}, {{4, 5, 6}});
+  flat.vertices[2] = {2, 0, 0};
+  flat.vertices[3] = {3, 0, 0};
+  EXPECT_EQ(refusal(flat), "");
+}
+
 TEST(Api, ErrorsAreExceptionsThatNameNoFlag) {
   auto expect_message = [](const std::string& what, const std::string& needle) {
     EXPECT_NE(what.find(needle), std::string::npos) << what;

@@ -511,6 +511,34 @@ std::vector<BadCase> bad_cases() {
   std::memcpy(&nan[header.size() + 13 + 4], &qnan, 4);  // vertex 1, y
   v.push_back({"ply binary nan", "ply", nan, "bad.ply: byte " + std::to_string(header.size() + 17) + ": ",
                "property 'y' of 'vertex' record 1 is not finite"});
+  // vismap's JSON scene (.vmscene.json): the line of the problem, and what it is.
+  const std::string vs = "{\"vertices\": [[0,0,0],[1,0,0],[0,1,0]],\n";
+  for (BadCase c : std::vector<BadCase>{
+           {"vmscene not an object", "", "[1]", "bad.vmscene:1: ", "expected '{'"},
+           {"vmscene unknown key", "", vs + "\"face\": []}", "bad.vmscene:2: ", "unknown key 'face'"},
+           {"vmscene twice", "", vs + "\"faces\": [], \"faces\": []}", "bad.vmscene:2: ", "the key 'faces' appears twice"},
+           {"vmscene no faces", "", "{\"vertices\": []}", "bad.vmscene: ", "no \"faces\" key"},
+           {"vmscene short vertex", "", "{\"vertices\": [[0,0]]}", "bad.vmscene:1: ", "expected ',' between vertex"},
+           {"vmscene string coordinate", "", "{\"vertices\": [[0,\"1\",0]]}", "bad.vmscene:1: ",
+            "expected y of vertex 0 (a number), found '\"1\"'"},
+           {"vmscene overflow", "", "{\"vertices\": [[0,0,1e999]]}", "bad.vmscene:1: ",
+            "z of vertex 0 is '1e999', which is not a finite double"},
+           {"vmscene two corners", "", vs + "\"faces\": [[0,1]]}", "bad.vmscene:2: ", "face 0 has 2 corners"},
+           {"vmscene negative index", "", vs + "\"faces\": [[0,-1,2]]}", "bad.vmscene:2: ",
+            "expected vertex index 1 of face 0 (a non-negative integer), found '-1'"},
+           {"vmscene index out of range", "", vs + "\"faces\": [\n[0,1,2],\n[0,1,3]]}", "bad.vmscene:4: ",
+            "face 1 has vertex index 3, but there are only 3 vertices"},
+           {"vmscene hole out of range", "", vs + "\"faces\": [{\"outer\": [0,1,2], \"holes\": [[0,1,7]]}]}",
+            "bad.vmscene:2: ", "hole 0 of face 0 has vertex index 7"},
+           {"vmscene no outer", "", vs + "\"faces\": [{\"holes\": []}]}", "bad.vmscene:2: ", "face 0 has no \"outer\" ring"},
+           {"vmscene face key", "", vs + "\"faces\": [{\"outer\": [0,1,2], \"hole\": []}]}", "bad.vmscene:2: ",
+            "face 0: unknown key 'hole'"},
+           {"vmscene trailing", "", vs + "\"faces\": []}\n}", "bad.vmscene:3: ", "expected the end of the file"},
+           {"vmscene cut", "", vs + "\"faces\": [[0,1,2]", "bad.vmscene:2: ", "found the end of the file"},
+       }) {
+    c.format = "vmscene";
+    v.push_back(c);
+  }
   std::string bad_index = good;
   const std::int32_t nine = 9;
   const std::size_t face0 = header.size() + 4 * 13 + 2 * 10;
@@ -526,6 +554,24 @@ TEST(Malformed, EveryCaseThrowsNamingFileAndPlace) {
     EXPECT_TRUE(starts_with(msg, c.prefix)) << c.label << ": " << msg;
     EXPECT_NE(msg.find(c.contains), std::string::npos) << c.label << ": " << msg;
   }
+}
+
+TEST(Vmscene, FacesWithHolesAnyKeyOrder) {
+  const Scene s = vismap::read_scene_bytes(
+      "{\"faces\": [[0, 1, 2], {\"holes\": [[4, 5, 6], [4, 6, 7]], \"outer\": [0, 1, 2, 3]}, {\"outer\": [1, 2, 3]}],\n"
+      " \"vertices\": [[0, 0, 0], [4, 0, 0], [4, 4, -0.5e1], [0, 4, 1E-3],\n"
+      "              [1, 1, 0], [2, 1, 0], [2, 2, 0], [1, 2, 0]]}\n",
+      "s.vmscene.json", "vmscene");
+  ASSERT_EQ(s.vertices.size(), 8u);
+  expect_vertex(s.vertices[2], 4, 4, -5);
+  expect_vertex(s.vertices[3], 0, 4, 0.001);
+  ASSERT_EQ(s.faces.size(), 3u);
+  EXPECT_EQ(s.faces[1], (vismap::IndexRing{0, 1, 2, 3}));
+  EXPECT_TRUE(s.holes_of(0).empty());
+  ASSERT_EQ(s.holes_of(1).size(), 2u);
+  EXPECT_EQ(s.holes_of(1)[1], (vismap::IndexRing{4, 6, 7}));
+  EXPECT_TRUE(s.holes_of(2).empty());
+  EXPECT_EQ(vismap::sniff_format("  {\"vertices\": []}"), "vmscene");
 }
 
 // Absurd counts are refused from the header, before anything is allocated.
@@ -580,14 +626,14 @@ TEST(Files, ErrorsNameThePath) {
   EXPECT_EQ(error(folder.string()), folder.string() + ": is a directory, not a mesh file");
 
   const std::string txt = dir.write("m.txt", "OFF\n0 0 0\n");
-  EXPECT_EQ(error(txt), txt + ": unknown file extension '.txt'; expected .off, .obj, .stl or .ply (or name the format)");
+  EXPECT_EQ(error(txt), txt + ": unknown file extension '.txt'; expected .off, .obj, .stl, .ply or .vmscene.json (or name the format)");
   const std::string none = dir.write("mesh", "OFF\n0 0 0\n");
-  EXPECT_EQ(error(none), none + ": no file extension; expected .off, .obj, .stl or .ply (or name the format)");
+  EXPECT_EQ(error(none), none + ": no file extension; expected .off, .obj, .stl, .ply or .vmscene.json (or name the format)");
 
   const std::string bad = dir.write("bad.off", kOffHead + "3 0 1 7\n");
   EXPECT_EQ(error(bad), bad + ":6: face 0 has vertex index 7, but there are only 3 vertices");
 
-  EXPECT_EQ(error_of("", "x", "gltf"), "x: unknown format 'gltf'; expected off, obj, stl or ply");
+  EXPECT_EQ(error_of("", "x", "gltf"), "x: unknown format 'gltf'; expected off, obj, stl, ply or vmscene");
   EXPECT_EQ(read("OFF\n0 0\n", "OFF").file, "t.OFF");  // format name is case-insensitive too
 }
 

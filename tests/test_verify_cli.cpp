@@ -200,6 +200,29 @@ TEST(VerifyCli, RejectsEachKindOfWrongMap) {
   }
 }
 
+// Holes are part of the scene the checker reads: the map of a face with its
+// holes filled is refused against the scene with holes, and the map with holes
+// against the scene without them (the same vertices; every hole's ring a face's).
+TEST(VerifyCli, HolesMatter) {
+  TempDir dir("verify_holes");
+  const std::string with_holes = (kData / "holes_block.vmscene.json").string();
+  std::string filled = vismap_test::slurp(with_holes);
+  // {"outer": [..], "holes": [[..]]} -> [..]: the outer ring alone.
+  for (std::size_t at; (at = filled.find("{\"outer\": ")) != std::string::npos;) {
+    const std::size_t holes = filled.find(", \"holes\"", at), end = filled.find("]]}", at);
+    filled = filled.substr(0, at) + filled.substr(at + 10, holes - at - 10) + filled.substr(end + 3);
+  }
+  const std::string without = dir.write("holes_block.vmscene.json", filled);
+  const std::string map_with = dir.file("with.json"), map_without = dir.file("without.json");
+  ASSERT_EQ(vismap(dir, {with_holes, "--dir", "-1,-2,-4", "--hidden", "--json", map_with}).status, 0);
+  ASSERT_EQ(vismap(dir, {without, "--dir", "-1,-2,-4", "--hidden", "--json", map_without}).status, 0);
+  ASSERT_EQ(verify(dir, with_holes, map_with).status, 0);
+  ASSERT_EQ(verify(dir, without, map_without).status, 0);
+  const Result r = verify(dir, with_holes, map_without), s = verify(dir, without, map_with);
+  EXPECT_EQ(r.status, 1) << both(r);
+  EXPECT_EQ(s.status, 1) << both(s);
+}
+
 // --strict recomputes, at every stretch of every line, which line the map must
 // draw there: under the issue-17 seam it finds the border drawn where the seam
 // (not drawn) is the first visible line, and says so.

@@ -43,11 +43,11 @@ std::vector<mpq_class> stretch_params(const Screen& sc, const MapDoc& doc, const
     }
     for (std::size_t i = 0, n = p.xy.size(); i < n; ++i) {
       const P2& u = p.xy[i];
-      const P2& v = p.xy[(i + 1) % n];
+      const P2& v = p.xy[p.next(i)];
       int o1 = orient(a, b, u), o2 = orient(a, b, v);
       if (o1 == 0 && o2 == 0) {   // collinear: its ends, and where it passes in depth
         const mpq_class& du = p.depth[i];
-        const mpq_class& dv = p.depth[(i + 1) % n];
+        const mpq_class& dv = p.depth[p.next(i)];
         mpq_class tu = param(u), tv = param(v);
         if (tu != tv) {
           mpq_class k = (dv - du) / (tv - tu);   // its depth per unit of t
@@ -105,7 +105,7 @@ bool buried(const Screen& sc, const P2& a, const P2& b, const mpq_class& da, con
     if (sa > 0 || sb > 0 || (sa == 0 && sb == 0)) continue;
     // Convex: both ends in the closed face and the midpoint inside put the
     // whole open segment inside.
-    if (locate(m, h.xy) == Where::Inside && locate(a, h.xy) != Where::Outside && locate(b, h.xy) != Where::Outside)
+    if (locate(m, h) == Where::Inside && locate(a, h) != Where::Outside && locate(b, h) != Where::Outside)
       return true;
   }
   return false;
@@ -118,7 +118,7 @@ bool hidden_at(const Screen& sc, const P2& q, const mpq_class& d, const std::vec
   for (std::uint32_t hi : sc.grid.near(q)) {
     const Piece& h = sc.pieces[hi];
     if (h.orient == 0 || !h.box.contains(q) || std::find(own.begin(), own.end(), h.face) != own.end()) continue;
-    if (h.depth_cmp(q, d) < 0 && locate(q, h.xy) == Where::Inside) return true;
+    if (h.depth_cmp(q, d) < 0 && locate(q, h) == Where::Inside) return true;
   }
   return false;
 }
@@ -178,10 +178,10 @@ void edges(Context& c) {
       // Near-plane cuts are not required: the spec does not say they are lines.
       if (p.role[i] != Role::Boundary) continue;
       const P2& a = p.xy[i];
-      const P2& b = p.xy[(i + 1) % n];
+      const P2& b = p.xy[p.next(i)];
       if (a == b) continue;   // seen end-on: a point, not a line
       const P2 s{b.x - a.x, b.y - a.y};
-      for_each_stretch(c, a, b, p.depth[i], p.depth[(i + 1) % n], {p.face}, [&](const P2& q, const mpq_class& d) {
+      for_each_stretch(c, a, b, p.depth[i], p.depth[p.next(i)], {p.face}, [&](const P2& q, const mpq_class& d) {
         LineView lv = look_along(c.sc, q, s);
         if (!lv.clean) return;
         if (c.opt.strict) return require_winner(c, q, lv);
@@ -219,7 +219,7 @@ std::vector<std::pair<P2, P2>> crossing_stretches(const Piece& p, const Piece& r
   for (const Piece* pc : {&p, &r}) {
     for (std::size_t i = 0, n = pc->xy.size(); i < n; ++i) {
       const P2& u = pc->xy[i];
-      const P2& v = pc->xy[(i + 1) % n];
+      const P2& v = pc->xy[pc->next(i)];
       mpq_class fu = A * u.x + B * u.y + C, fv = A * v.x + B * v.y + C;
       if (fu == 0) ts.push_back(param(u));
       if (fv == 0) ts.push_back(param(v));
@@ -233,7 +233,7 @@ std::vector<std::pair<P2, P2>> crossing_stretches(const Piece& p, const Piece& r
   ts.erase(std::unique(ts.begin(), ts.end()), ts.end());
   for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
     P2 mid = at((ts[k] + ts[k + 1]) / 2);
-    if (locate(mid, p.xy) == Where::Inside && locate(mid, r.xy) == Where::Inside) out.emplace_back(at(ts[k]), at(ts[k + 1]));
+    if (locate(mid, p) == Where::Inside && locate(mid, r) == Where::Inside) out.emplace_back(at(ts[k]), at(ts[k + 1]));
   }
   return out;
 }

@@ -159,10 +159,10 @@ void cover_edges(Context& c) {
     for (std::size_t i = 0, n = p.xy.size(); i < n; ++i) {
       if (p.role[i] != Role::Boundary) continue;
       const P2& a = p.xy[i];
-      const P2& b = p.xy[(i + 1) % n];
+      const P2& b = p.xy[p.next(i)];
       if (a == b) continue;
       const P2 s{b.x - a.x, b.y - a.y};
-      for_each_stretch(c, a, b, p.depth[i], p.depth[(i + 1) % n], [&](const P2& q, const mpq_class& d) {
+      for_each_stretch(c, a, b, p.depth[i], p.depth[p.next(i)], [&](const P2& q, const mpq_class& d) {
         const LineView lv = look_along(c.sc, q, s);
         if (!lv.clean) return;
         const LineItem* mine = nullptr;

@@ -16,7 +16,7 @@ PointLabel label_at(const Screen& sc, const P2& q) {
   for (std::uint32_t pi : sc.grid.near(q)) {
     const Piece& p = sc.pieces[pi];
     if (!p.box.contains(q)) continue;
-    Where w = locate(q, p.xy);
+    Where w = locate(q, p);
     if (w == Where::Boundary) return out;   // on a projected edge (fan diagonals included)
     if (p.orient != 0 && w == Where::Inside) cands.push_back({&p, p.depth_at(q)});
   }
@@ -67,7 +67,7 @@ LineView look_along(const Screen& sc, const P2& q, const P2& s) {
     bool on_edge = false, inside = false;
     for (std::size_t i = 0; i < n; ++i) {
       const P2& a = p.xy[i];
-      const P2& b = p.xy[(i + 1) % n];
+      const P2& b = p.xy[p.next(i)];
       if (a == q) return out;   // a projected vertex
       if (!on_segment(q, a, b)) {
         // Even-odd parity, as in locate(), in the same pass.
@@ -81,7 +81,7 @@ LineView look_along(const Screen& sc, const P2& q, const P2& s) {
       if (cross_dir(e, s) != 0) return out;   // an edge crossing the line
       on_edge = true;
       const mpq_class& da = p.depth[i];
-      const mpq_class& db = p.depth[(i + 1) % n];
+      const mpq_class& db = p.depth[p.next(i)];
       mpq_class t = e.x != 0 ? mpq_class((q.x - a.x) / e.x) : mpq_class((q.y - a.y) / e.y);
       mpq_class k = s.x != 0 ? mpq_class(e.x / s.x) : mpq_class(e.y / s.y);   // e = k s
       Hit h{&p, da + t * (db - da), (db - da) / k};

@@ -1,6 +1,7 @@
 // Projection, near-plane clipping and face pieces (spec "Faces", "Camera").
 #include "verify/screen.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -100,56 +101,52 @@ struct V3Eq {
   bool operator==(const V3Eq& o) const { return x == o.x && y == o.y && d == o.d; }
 };
 
+struct WorldRing {
+  std::vector<V3> p;
+  std::vector<Role> role;
+};
+
 class Projector {
  public:
   Projector(const MapDoc& doc, Screen& out, Failures& fail) : doc_(doc), out_(out), fail_(fail) {}
 
   // world polygon (no consecutive repeats) with roles -> one Piece (or none)
   void add(std::uint32_t face, const std::vector<V3>& world, const std::vector<Role>& roles, const V3& normal) {
-    HPoly h;
-    for (const V3& p : world) {
-      V4 q;
-      for (int i = 0; i < 4; ++i) q[i] = doc_.m[i][0] * p[0] + doc_.m[i][1] * p[1] + doc_.m[i][2] * p[2] + doc_.m[i][3];
-      h.v.push_back(std::move(q));
-    }
-    h.role = roles;
-    if (doc_.perspective) {
-      h = clip(h, 3);   // W >= 0
-      h = clip(h, 2);   // Z >= 0: the near plane is depth 0
-      if (h.v.size() < 3) return;
-      bool all_on_near = true;
-      for (const V4& p : h.v) all_on_near = all_on_near && p[2] == 0;
-      if (all_on_near) return;   // "at or behind the near plane" is clipped away
-    }
-    std::vector<V3Eq> s;
-    for (const V4& p : h.v) {
-      if (sgn(p[3]) <= 0) {
-        fail_.add("projection: face " + std::to_string(face) + " has a kept point with W = " + str(p[3]) +
-                  " <= 0 under the map's view_matrix");
-        return;
-      }
-      s.push_back({p[0] / p[3], p[1] / p[3], p[2] / p[3]});
-    }
-    drop_repeats(s, h.role);
-    if (s.size() < 3) return;
+    add(face, {WorldRing{world, roles}}, normal);
+  }
+
+  // A planar polygon with holes (rings[0] the outer ring, each hole turned
+  // against it), each ring projected and clipped on its own -> one Piece.
+  void add(std::uint32_t face, const std::vector<WorldRing>& rings, const V3& normal) {
     Piece pc;
     pc.face = face;
-    pc.role = std::move(h.role);
     pc.normal = normal;
-    std::vector<V3> sp;
-    for (V3Eq& p : s) {
-      pc.xy.push_back(P2{p.x, p.y});
-      pc.depth.push_back(p.d);
-      sp.push_back(V3{p.x, p.y, p.d});
+    std::vector<V3> outer;   // ring 0 on the screen, (x, y, depth)
+    for (const WorldRing& r : rings) {
+      std::vector<V3Eq> s;
+      std::vector<Role> role;
+      if (!project(face, r, s, role)) return;
+      if (s.size() < 3) {
+        if (&r == &rings[0]) return;   // the outer ring is gone: so is the piece
+        continue;
+      }
+      const std::size_t first = pc.xy.size();
+      for (std::size_t i = 0; i < s.size(); ++i) {
+        pc.xy.push_back(P2{s[i].x, s[i].y});
+        pc.depth.push_back(s[i].d);
+        pc.role.push_back(role[i]);
+        if (&r == &rings[0]) outer.push_back(V3{s[i].x, s[i].y, s[i].d});
+        if (rings.size() > 1) pc.ring_next.push_back(static_cast<std::uint32_t>(i + 1 == s.size() ? first : first + i + 1));
+      }
     }
-    V3 n = newell(sp);   // (x, y, depth) space: projective images of planes are planes
+    V3 n = newell(outer);   // (x, y, depth) space: projective images of planes are planes
     pc.orient = sgn(n[2]);
     if (pc.orient != 0) {
       pc.pa = -n[0] / n[2];
       pc.pb = -n[1] / n[2];
-      pc.pc = sp[0][2] - pc.pa * sp[0][0] - pc.pb * sp[0][1];
-      for (const V3& p : sp)
-        if (pc.pa * p[0] + pc.pb * p[1] + pc.pc != p[2])
+      pc.pc = outer[0][2] - pc.pa * outer[0][0] - pc.pb * outer[0][1];
+      for (std::size_t i = 0; i < pc.xy.size(); ++i)
+        if (pc.pa * pc.xy[i].x + pc.pb * pc.xy[i].y + pc.pc != pc.depth[i])
           fail_.add("internal: face " + std::to_string(face) + " is not planar on the screen");
       mpz_lcm(pc.il.get_mpz_t(), pc.pa.get_den_mpz_t(), pc.pb.get_den_mpz_t());
       mpz_lcm(pc.il.get_mpz_t(), pc.il.get_mpz_t(), pc.pc.get_den_mpz_t());
@@ -159,7 +156,7 @@ class Projector {
     }
     pc.box = box_of(pc.xy);
     // Convex: every vertex on the inner side (or the line) of every edge.
-    pc.convex = pc.orient != 0;
+    pc.convex = pc.orient != 0 && pc.ring_next.empty();
     for (std::size_t i = 0, k = pc.xy.size(); i < k && pc.convex; ++i)
       for (const P2& v : pc.xy)
         if (orient(pc.xy[i], pc.xy[(i + 1) % k], v) == -pc.orient) {
@@ -170,6 +167,39 @@ class Projector {
   }
 
  private:
+  // One ring through the view matrix, clipped at the near plane in perspective:
+  // its screen points and roles (fewer than three: nothing left). False, with
+  // a failure, when a kept point has W <= 0.
+  bool project(std::uint32_t face, const WorldRing& r, std::vector<V3Eq>& s, std::vector<Role>& role) {
+    HPoly h;
+    for (const V3& p : r.p) {
+      V4 q;
+      for (int i = 0; i < 4; ++i) q[i] = doc_.m[i][0] * p[0] + doc_.m[i][1] * p[1] + doc_.m[i][2] * p[2] + doc_.m[i][3];
+      h.v.push_back(std::move(q));
+    }
+    h.role = r.role;
+    if (doc_.perspective) {
+      h = clip(h, 3);   // W >= 0
+      h = clip(h, 2);   // Z >= 0: the near plane is depth 0
+      if (h.v.size() < 3) return true;
+      bool all_on_near = true;
+      for (const V4& p : h.v) all_on_near = all_on_near && p[2] == 0;
+      if (all_on_near) return true;   // "at or behind the near plane" is clipped away
+    }
+    for (const V4& p : h.v) {
+      if (sgn(p[3]) <= 0) {
+        fail_.add("projection: face " + std::to_string(face) + " has a kept point with W = " + str(p[3]) +
+                  " <= 0 under the map's view_matrix");
+        return false;
+      }
+      s.push_back({p[0] / p[3], p[1] / p[3], p[2] / p[3]});
+    }
+    role = std::move(h.role);
+    drop_repeats(s, role);
+    if (s.size() < 3) s.clear();
+    return true;
+  }
+
   const MapDoc& doc_;
   Screen& out_;
   Failures& fail_;
@@ -197,6 +227,47 @@ std::vector<P2> flatten(const std::vector<V3>& w, const V3& n) {
   return r;
 }
 
+// A ring's corners as exact points, consecutive repeats dropped; false when
+// an index is out of range or a vertex is not finite.
+bool world_ring(const vismap::Scene& scene, const vismap::IndexRing& idx, std::vector<V3>& w) {
+  for (std::uint32_t i : idx) {
+    if (i >= scene.vertices.size()) return false;
+    const vismap::Vec3& v = scene.vertices[i];
+    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) return false;
+    V3 p{mpq_class(v.x), mpq_class(v.y), mpq_class(v.z)};   // doubles are exact rationals
+    if (w.empty() || w.back() != p) w.push_back(std::move(p));
+  }
+  while (w.size() > 1 && w.front() == w.back()) w.pop_back();
+  return true;
+}
+
+// A face with holes (Scene: planar, holes inside the outer ring): one piece of
+// several rings, every edge a boundary edge. An outer ring with no area drops
+// the face, as for any polygon; the rest of what Scene requires is the
+// engines' to refuse, and only planarity and the holes' areas are checked here.
+void add_holed_face(const vismap::Scene& scene, std::uint32_t f, Projector& proj, Failures& fail) {
+  std::vector<WorldRing> rings(1);
+  const std::string face = "scene: face " + std::to_string(f);
+  if (!world_ring(scene, scene.faces[f], rings[0].p))
+    return fail.add(face + " has a vertex index out of range or a vertex not finite");
+  const V3 n = newell(rings[0].p);   // the outer ring's normal: its turn says which side is the front
+  if (rings[0].p.size() < 3 || is_zero(n)) return;
+  for (const vismap::IndexRing& idx : scene.holes_of(f)) {
+    WorldRing h;
+    if (!world_ring(scene, idx, h.p)) return fail.add(face + " has a vertex index out of range or a vertex not finite");
+    rings.push_back(std::move(h));
+  }
+  for (WorldRing& r : rings) {
+    for (const V3& p : r.p)
+      if (dot3(n, sub(p, rings[0].p[0])) != 0) return fail.add(face + " has holes but is not planar");
+    const mpq_class turn = dot3(newell(r.p), n);
+    if (turn == 0) return fail.add(face + " has a hole with no area");
+    if (&r != &rings[0] && turn > 0) std::reverse(r.p.begin(), r.p.end());   // turned against the outer ring
+    r.role.assign(r.p.size(), Role::Boundary);
+  }
+  proj.add(f, rings, n);
+}
+
 }  // namespace
 
 int Piece::depth_cmp(const P2& q, const mpq_class& d) const {
@@ -217,6 +288,21 @@ int Piece::depth_cmp(const P2& q, const mpq_class& d) const {
   mpz_mul(t.get_mpz_t(), t.get_mpz_t(), common.get_mpz_t());
   int c = cmp(x, t);
   return c > 0 ? 1 : c < 0 ? -1 : 0;
+}
+
+Where locate(const P2& q, const Piece& p) {
+  bool inside = false;
+  for (std::size_t i = 0, n = p.xy.size(); i < n; ++i) {
+    const P2& a = p.xy[i];
+    const P2& b = p.xy[p.next(i)];
+    if (on_segment(q, a, b)) return Where::Boundary;
+    // Half-open rule on y, as locate() on one ring: each crossing counted once.
+    if ((a.y > q.y) != (b.y > q.y)) {
+      int o = orient(a, b, q);
+      if (b.y > a.y ? o > 0 : o < 0) inside = !inside;
+    }
+  }
+  return inside ? Where::Inside : Where::Outside;
 }
 
 bool is_crease(const std::array<mpq_class, 3>& n1, const std::array<mpq_class, 3>& n2, const mpq_class& c) {
@@ -252,6 +338,10 @@ Screen make_screen(const vismap::Scene& scene, const MapDoc& doc, double crease_
   out.smooth = smooth;
   Projector proj(doc, out, fail);
   for (std::size_t f = 0; f < scene.faces.size(); ++f) {
+    if (!scene.holes_of(f).empty()) {
+      add_holed_face(scene, static_cast<std::uint32_t>(f), proj, fail);
+      continue;
+    }
     const auto& idx = scene.faces[f];
     std::vector<V3> w;
     bool bad = false;

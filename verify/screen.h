@@ -23,7 +23,15 @@ struct Piece {
   std::uint32_t face = 0;
   std::vector<P2> xy;                   // screen positions, no two consecutive equal
   std::vector<mpq_class> depth;         // depth of each vertex
-  std::vector<Role> role;               // role[i]: edge xy[i] -> xy[i+1 mod n]
+  std::vector<Role> role;               // role[i]: edge xy[i] -> xy[next(i)]
+  // A face with holes is one piece of several rings, one after another in xy:
+  // the outer ring first, then the holes, each turned against the outer one
+  // (so the piece lies on the same side of every edge). ring_next[i] is the
+  // corner after i in its ring; empty for a piece of one ring.
+  std::vector<std::uint32_t> ring_next;
+  std::size_t next(std::size_t i) const {
+    return ring_next.empty() ? (i + 1 == xy.size() ? 0 : i + 1) : ring_next[i];
+  }
   int orient = 0;                       // +1 front-facing, -1 back-facing, 0 edge-on
   bool convex = false;                  // projection convex (and not edge-on)
   mpq_class pa, pb, pc;                 // depth = pa x + pb y + pc (orient != 0)
@@ -45,6 +53,9 @@ struct Piece {
 
   mpz_class ia, ib, ic, il;             // il depth = ia x + ib y + ic, il > 0 (orient != 0)
 };
+
+// Where q is against the piece's rings (even-odd over all of them).
+Where locate(const P2& q, const Piece& p);
 
 struct Screen {
   std::vector<Piece> pieces;            // in face order

@@ -25,7 +25,7 @@ mpq_class union_area(const Screen& sc) {
     if (p.orient == 0) continue;
     for (std::size_t i = 0, n = p.xy.size(); i < n; ++i) {
       const P2& u = p.xy[i];
-      const P2& v = p.xy[(i + 1) % n];
+      const P2& v = p.xy[p.next(i)];
       xs.push_back(u.x);
       if (u.x == v.x) continue;   // vertical edges bound no slab
       Edge e{u.x < v.x ? u : v, u.x < v.x ? v : u, pi, 0};
@@ -40,7 +40,7 @@ mpq_class union_area(const Screen& sc) {
   auto buried = [&](const P2& c) {
     for (std::uint32_t pi : sc.grid.near(c)) {
       const Piece& p = sc.pieces[pi];
-      if (p.orient != 0 && p.box.contains(c) && locate(c, p.xy) == Where::Inside) return true;
+      if (p.orient != 0 && p.box.contains(c) && locate(c, p) == Where::Inside) return true;
     }
     return false;
   };

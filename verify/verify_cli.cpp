@@ -41,8 +41,8 @@ options:
   --strict         also check every stretch of every edge and intersection line,
                    hidden ones included: a segment exactly where the first
                    visible line (drawn or not) is drawn (slower)
-  --format F       SCENE's format: off, obj, stl or ply (default: by extension;
-                   for standard input, by content)
+  --format F       SCENE's format: off, obj, stl, ply or vmscene (default: by
+                   extension; for standard input, by content)
   --max-memory SIZE  refuse a scene that would need more (e.g. 8G; default:
                    from physical memory)
   -h, --help       this text
@@ -127,8 +127,8 @@ int verify_command(const std::vector<std::string>& args) {
         opt.strict = true;
       } else if (a == "--format") {
         format = value();
-        if (format != "off" && format != "obj" && format != "stl" && format != "ply")
-          throw Usage("--format expects off, obj, stl or ply, got '" + format + "'");
+        if (format != "off" && format != "obj" && format != "stl" && format != "ply" && format != "vmscene")
+          throw Usage("--format expects off, obj, stl, ply or vmscene, got '" + format + "'");
       } else if (a == "--max-memory") {
         const std::string& v = value();
         if (!vismap::parse_memory_size(v, limits.max_memory))

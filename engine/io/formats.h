@@ -13,5 +13,6 @@ void read_off(std::string_view bytes, const std::string& name, const ReadLimits&
 void read_obj(std::string_view bytes, const std::string& name, const ReadLimits& limits, Scene& out);
 void read_stl(std::string_view bytes, const std::string& name, const ReadLimits& limits, Scene& out);
 void read_ply(std::string_view bytes, const std::string& name, const ReadLimits& limits, Scene& out);
+void read_vmscene(std::string_view bytes, const std::string& name, const ReadLimits& limits, Scene& out);
 
 }  // namespace vismap::io

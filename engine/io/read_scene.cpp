@@ -28,6 +28,7 @@ Reader reader_for(const std::string& format) {
   if (format == "obj") return io::read_obj;
   if (format == "stl") return io::read_stl;
   if (format == "ply") return io::read_ply;
+  if (format == "vmscene" || format == "json") return io::read_vmscene;   // (a .vmscene.json's extension is .json)
   return nullptr;
 }
 
@@ -77,7 +78,7 @@ bool is_blank(char ch) { return ch == ' ' || ch == '\t' || ch == '\r' || ch == '
 Scene read_scene_bytes(std::string_view bytes, const std::string& name, const std::string& format,
                        const ReadLimits& limits) {
   const Reader reader = reader_for(lowercase(format));
-  if (!reader) io::fail(name, io::cat("unknown format ", io::quote(format), "; expected off, obj, stl or ply"));
+  if (!reader) io::fail(name, io::cat("unknown format ", io::quote(format), "; expected off, obj, stl, ply or vmscene"));
   Scene scene;
   scene.file = name;
   reader(bytes, name, limits, scene);
@@ -100,6 +101,7 @@ std::string sniff_format(std::string_view bytes) {
     }
     break;
   }
+  if (i < bytes.size() && bytes[i] == '{') return "vmscene";
   std::size_t j = i;
   while (j < bytes.size() && !is_blank(bytes[j]) && bytes[j] != '#') ++j;
   const std::string word = lowercase(bytes.substr(i, j - i));
@@ -119,8 +121,8 @@ Scene read_scene(const std::string& path, const ReadLimits& limits, const std::s
     std::string fmt = lowercase(format);
     if (fmt.empty()) fmt = sniff_format(data);
     if (fmt.empty()) {
-      io::fail(kStdinName, data.empty() ? "empty input; expected an OFF, OBJ, STL or PLY mesh"
-                                        : "cannot tell the mesh format from the content; name it: off, obj, stl or ply");
+      io::fail(kStdinName, data.empty() ? "empty input; expected an OFF, OBJ, STL or PLY mesh, or a vmscene"
+                                        : "cannot tell the mesh format from the content; name it: off, obj, stl, ply or vmscene");
     }
     return read_scene_bytes(data, kStdinName, fmt, limits);
   }
@@ -129,13 +131,13 @@ Scene read_scene(const std::string& path, const ReadLimits& limits, const std::s
     // Check the extension before touching the file: a wrong name fails fast.
     const std::string ext = lowercase(std::filesystem::path(path).extension().string());
     if (ext.empty() || !reader_for(ext.substr(1))) {
-      io::fail(path, ext.empty() ? std::string("no file extension; expected .off, .obj, .stl or .ply (or name the format)")
+      io::fail(path, ext.empty() ? std::string("no file extension; expected .off, .obj, .stl, .ply or .vmscene.json (or name the format)")
                                  : io::cat("unknown file extension ", io::quote(ext),
-                                           "; expected .off, .obj, .stl or .ply (or name the format)"));
+                                           "; expected .off, .obj, .stl, .ply or .vmscene.json (or name the format)"));
     }
     fmt = ext.substr(1);
   } else if (!reader_for(fmt)) {
-    io::fail(path, io::cat("unknown format ", io::quote(format), "; expected off, obj, stl or ply"));
+    io::fail(path, io::cat("unknown format ", io::quote(format), "; expected off, obj, stl, ply or vmscene"));
   }
   return read_scene_bytes(read_file(path, limits), path, fmt, limits);
 }

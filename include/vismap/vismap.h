@@ -15,6 +15,7 @@
 // for an output that cannot be written.
 #pragma once
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -35,10 +36,24 @@ struct Vec3 {
 
 // Vertices and polygons (indices into `vertices`, in order around the polygon);
 // a face's index is its position in `faces`.
+//
+// A face may have holes: holes[f] lists face f's hole rings (`holes` may be
+// shorter than `faces`, or empty: faces past its end have none). A face with
+// holes must be planar, each hole inside its outer ring and outside the other
+// holes, no two rings crossing (they may share corners); a hole's edges are
+// border edges of its face, and its orientation does not matter (the outer
+// ring's says which side is the front).
+using IndexRing = std::vector<std::uint32_t>;
 struct Scene {
   std::string file;                                 // a name for messages and the JSON
   std::vector<Vec3> vertices;                       // finite doubles: the exact input
-  std::vector<std::vector<std::uint32_t>> faces;
+  std::vector<IndexRing> faces;                     // each face's outer ring
+  std::vector<std::vector<IndexRing>> holes;        // each face's hole rings (optional)
+
+  const std::vector<IndexRing>& holes_of(std::size_t face) const {
+    static const std::vector<IndexRing> none;
+    return face < holes.size() ? holes[face] : none;
+  }
 };
 
 // Bad input. what() is the whole message and already names the file, and the
@@ -59,13 +74,15 @@ struct ReadLimits {
   std::uint64_t max_memory = 0;
 };
 
-// Reads OFF, OBJ, STL (ASCII/binary) or PLY (ASCII/binary). `format` ("off",
-// "obj", "stl", "ply", any case) forces one; when empty, a file's format comes
-// from its extension (case-insensitive), and standard input's (path "-") from
-// its content. Throws InputError on any malformed input.
+// Reads OFF, OBJ, STL (ASCII/binary), PLY (ASCII/binary) or vismap's own JSON
+// scene (.vmscene.json: faces with holes; docs/format.md). `format` ("off",
+// "obj", "stl", "ply", "vmscene", any case) forces one; when empty, a file's
+// format comes from its extension (case-insensitive; .json is a vmscene), and
+// standard input's (path "-") from its content. Throws InputError on any
+// malformed input.
 VISMAP_API Scene read_scene(const std::string& path, const ReadLimits& limits = {}, const std::string& format = "");
 
-// The same from bytes already in memory; `format` is "off", "obj", "stl" or "ply".
+// The same from bytes already in memory; `format` is "off", "obj", "stl", "ply" or "vmscene".
 VISMAP_API Scene read_scene_bytes(std::string_view bytes, const std::string& name, const std::string& format,
                                   const ReadLimits& limits = {});
 

@@ -3,6 +3,7 @@ the corpus; arrays that agree with the exact values; scenes from numpy; errors a
 Python exceptions; files written by extension. Run by ctest (Python.Pytest),
 which sets PYTHONPATH to the built module and VISMAP_BIN, VISMAP_DATA_DIR."""
 import fractions
+import json
 import os
 import re
 import shlex
@@ -105,6 +106,31 @@ def test_a_scene_from_numpy_gives_the_files_map(tmp_path):
     assert outer.shape[1] == 2 and holes == []
     s = vismap.read_scene(str(off))
     assert s.vertices.shape == (8, 3) and s.faces == f.tolist()
+
+
+def test_a_scene_with_holes_from_python_gives_the_files_map():
+    path = os.path.join(DATA, "holes_plate.vmscene.json")
+    with open(path) as f:
+        doc = json.load(f)
+    faces, holes = [], {}
+    for i, face in enumerate(doc["faces"]):
+        if isinstance(face, dict):
+            faces.append(face["outer"])
+            holes[i] = face.get("holes", [])
+        else:
+            faces.append(face)
+    scene = vismap.Scene(np.array(doc["vertices"], dtype=np.float64), faces, holes=holes, name=path)
+    assert scene.holes == {0: holes[0]} and len(holes[0]) == 3
+    assert vismap.compute(scene, dir=(-1, -2, -4), hidden=True).to_json() == \
+        vismap.compute(path, dir=(-1, -2, -4), hidden=True).to_json()
+    m = vismap.compute(scene, dir=(0, 0, -1))
+    assert sum(len(h) for _, _, h in m.regions) >= 2   # the plate's holes, seen from above
+    with pytest.raises(vismap.InputError, match="face 0 has holes, so it must be planar"):
+        bent = np.array(doc["vertices"], dtype=np.float64)
+        bent[4, 2] = 0.25
+        vismap.compute(vismap.Scene(bent, faces, holes=holes))
+    with pytest.raises(IndexError, match="holes name face 9"):
+        vismap.Scene(doc["vertices"], faces, holes={9: [[0, 1, 2]]})
 
 
 def test_errors_are_python_exceptions():
