@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <iterator>
 #include <optional>
 #include <span>
@@ -603,9 +604,37 @@ bool meet_only_at_shared_corner(const Facet& A, const Facet& B, const std::vecto
 // neighbours, apart). False: not proved.
 bool apart_in_world(const Facet& A, const Facet& B, const std::vector<Vec3>& world) {
   if (A.id.size() != 3 || B.id.size() != 3 || !input_corners(A) || !input_corners(B)) return false;
+  if (A.diagonals || B.diagonals) return false;   // touching along a diagonal may be crossing (meets_plane)
   if (one_side_in_world(A, B, world) || one_side_in_world(B, A, world)) return true;
   // Each crosses the other's plane strictly (a shared corner lies in both).
   return meet_only_at_shared_corner(A, B, world);
+}
+
+// How facet F meets the plane of facet G (side(k): the sign of F's corner k):
+// Cross, corners strictly on both sides; AlongDiagonal, on the positive side and
+// touching the plane along a diagonal of F's planar polygon (`diagonal`: its
+// index): the polygon goes on past it to the negative side, so it crosses the
+// plane there (the facet across the diagonal, on the negative side, reports
+// nothing, so the crossing is found once); otherwise Apart (Newell's tests 3
+// and 4: on one side, touching or not).
+enum class Meets { Apart, Cross, AlongDiagonal };
+template <class Side>
+Meets meets_plane(const Facet& F, const Facet& G, Side&& side, std::size_t& diagonal) {
+  if (!on_one_side(F, G, side)) return Meets::Cross;
+  if (!F.diagonals) return Meets::Apart;
+  const std::size_t n = F.id.size();   // (a facet with diagonals is a triangle, cut or not: n <= 4)
+  int sign[8];
+  bool positive = false;
+  for (std::size_t k = 0; k < n && k < 8; ++k) {
+    sign[k] = G.has_vertex(F.id[k]) ? 0 : side(k);
+    positive |= sign[k] > 0;
+  }
+  for (std::size_t k = 0; k < n && k < 8 && positive; ++k)
+    if (F.on_diagonal(k) && sign[k] == 0 && sign[(k + 1) % n] == 0) {
+      diagonal = k;
+      return Meets::AlongDiagonal;
+    }
+  return Meets::Apart;
 }
 
 }  // namespace
@@ -613,11 +642,12 @@ bool apart_in_world(const Facet& A, const Facet& B, const std::vector<Vec3>& wor
 bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3>* world, P2& p, P2& q) {
   // Most pairs a grid offers are neighbours on a mesh, apart: told on doubles.
   if (world && apart_in_world(A, B, *world)) return false;
-  // Newell's tests 3 and 4 on screen: one facet entirely on one side of the other's plane.
-  auto one_side = [&](const Facet& F, const Facet& G) {
-    return on_one_side(F, G, [&](std::size_t k) { return static_cast<int>(depth_above(F.v[k], G, world, F.id[k])); });
+  auto meets = [&](const Facet& F, const Facet& G, std::size_t& diagonal) {
+    return meets_plane(F, G, [&](std::size_t k) { return static_cast<int>(depth_above(F.v[k], G, world, F.id[k])); },
+                       diagonal);
   };
-  if (one_side(A, B) || one_side(B, A)) return false;
+  std::size_t diagonal[2] = {SIZE_MAX, SIZE_MAX};   // A's and B's, where one lies along the crossing line
+  if (meets(A, B, diagonal[0]) == Meets::Apart || meets(B, A, diagonal[1]) == Meets::Apart) return false;
   // Corners the two share (by identity) lie on both planes, so on their crossing
   // line. Two adjacent in both facets make it their common edge's line: nothing of
   // it is strictly inside either. One shared corner v: the line is parametrised
@@ -650,6 +680,7 @@ bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3
   for (const Facet* F : {&A, &B}) {
     const std::size_t n = F->v.size();
     for (std::size_t k = 0; k < n; ++k) {
+      if (k == diagonal[F == &B]) continue;   // the line runs along it: the facet's other edges bound it
       const P2 &e0 = F->v[k].xy(), &e1 = F->v[(k + 1) % n].xy();
       V2 e = e1 - e0;
       const bool through_p0 = shared >= 0 && (F->id[k] == shared || F->id[(k + 1) % n] == shared);

@@ -128,13 +128,41 @@ std::array<std::pair<FT, FT>, 2> chord(const Points& v, const Line& f) {
   return ends;
 }
 
-// Where facets A and B cross in 3D strictly inside both projections: each has
-// vertices strictly on both sides of the other's plane, and the chords the
-// planes' crossing line cuts from them overlap in more than a point.
+// How facet F meets G's plane: kCrosses (vertices strictly on both sides), the
+// index k of a diagonal of F's planar polygon along which F, behind G's plane,
+// touches it (the polygon goes on past it to the front: it crosses G's plane
+// there, and the facet across the diagonal, in front, reports nothing, so the
+// crossing is found once), or kApart.
+constexpr int kCrosses = -2, kApart = -1;
+int meets_plane(const Facet& F, const Facet& G) {
+  const int sides = sides_of_plane(F.v, {}, -1, G);
+  if (sides == kBoth) return kCrosses;
+  if (!F.diagonals || sides != kBehind) return kApart;
+  const std::size_t n = F.v.size();   // (a facet with diagonals is a triangle, cut or not: n <= 4)
+  auto on_plane = [&](std::size_t k) { return is_vertex_of(F.v[k], G) || plane_side(F.v[k], G) == CGAL::ZERO; };
+  for (std::size_t k = 0; k < n; ++k)
+    if (F.on_diagonal(k) && on_plane(k) && on_plane((k + 1) % n)) return static_cast<int>(k);
+  return kApart;
+}
+
+// The two ends of the chord facet F cuts from the planes' crossing line f: the
+// ends of its diagonal k where it lies along f, else chord().
+std::array<std::pair<FT, FT>, 2> chord_of(const Facet& F, int meets, const Line& f) {
+  if (meets == kCrosses) return chord(F.v, f);
+  const P3 &s = F.v[static_cast<std::size_t>(meets)], &t = F.v[(static_cast<std::size_t>(meets) + 1) % F.v.size()];
+  return {std::pair<FT, FT>{s.x, s.y}, std::pair<FT, FT>{t.x, t.y}};
+}
+
+// Where facets A and B cross in 3D strictly inside both projections: each
+// crosses the other's plane (meets_plane), and the chords the planes' crossing
+// line cuts from them overlap in more than a point.
 bool piercing_segment(const Facet& A, const Facet& B, P3& p, P3& q) {
-  if (sides_of_plane(A.v, {}, -1, B) != kBoth || sides_of_plane(B.v, {}, -1, A) != kBoth) return false;
+  const int ma = meets_plane(A, B);
+  if (ma == kApart) return false;
+  const int mb = meets_plane(B, A);
+  if (mb == kApart) return false;
   const Line f = plane_crossing(A, B);
-  auto a = chord(A.v, f), b = chord(B.v, f);
+  auto a = chord_of(A, ma, f), b = chord_of(B, mb, f);
   // Order along the line, direction (-f.b, f.a).
   auto key = [&](const std::pair<FT, FT>& x) { return f.a * x.second - f.b * x.first; };
   if (key(a[1]) < key(a[0])) std::swap(a[0], a[1]);

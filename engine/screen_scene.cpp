@@ -498,18 +498,24 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     f.face = w.face;
     f.planar = w.planar;
     const std::size_t n = w.v.size();
+    // (A diagonal of a planar polygon keeps its role on both sides of a cut.)
+    auto mark_diagonal = [&](std::size_t k) {
+      if (w.planar && w.role[k] == EdgeRole::Internal && f.v.size() <= 8)
+        f.diagonals |= static_cast<std::uint8_t>(1u << (f.v.size() - 1));
+    };
     for (std::size_t k = 0; k < n; ++k) {
       std::uint32_t a = w.v[k], b = w.v[(k + 1) % n];
-      if (in_front(a)) { f.v.refer(image(a)); f.id.push_back(static_cast<VertexId>(a)); }
+      if (in_front(a)) { f.v.refer(image(a)); f.id.push_back(static_cast<VertexId>(a)); mark_diagonal(k); }
       if (in_front(a) != in_front(b)) {
         f.v.keep(in_front(a) ? clip_point(a, b) : clip_point(b, a));
         f.id.push_back(-1);
+        if (!in_front(a)) mark_diagonal(k);   // (from the cut, the edge goes on to b)
         // The cut runs from where the polygon leaves the front half-space to where it re-enters.
         if (in_front(a)) clip_edges[fi].push_back(f.v.back());
         else clip_edges[fi].insert(clip_edges[fi].begin(), f.v.back());
       }
     }
-    if (f.v.size() < 3) { f.v.clear(); f.id.clear(); ++outside; return; }
+    if (f.v.size() < 3) { f.v.clear(); f.id.clear(); f.diagonals = 0; ++outside; return; }
     // Facing: the sign of the projected area (vertex coordinates are leaves:
     // intervals first, their exact values where those cannot tell).
     const std::size_t nv = f.v.size();

@@ -70,6 +70,11 @@ struct Facet {
   Facing facing = Facing::EdgeOn;
   bool occluder = false;         // hides and labels: not edge-on, not culled
   bool planar = true;            // false: a fan piece of a non-planar polygon
+  // Bit k: edge v[k] -> v[k+1] lies on a diagonal inside a planar polygon (a
+  // triangulation's edge, EdgeRole::Internal; such facets are triangles, at
+  // most four corners after the near-plane cut). The polygon goes on past it.
+  std::uint8_t diagonals = 0;
+  bool on_diagonal(std::size_t k) const { return k < 8 && ((diagonals >> k) & 1u); }
   double zlo = 0, zhi = 0;       // contains the exact depths over the facet (of its vertices)
   Corners v;                     // convex polygon, screen space, input order
   SmallVec<VertexId, 4> id;      // id[k]: v[k]'s canonical vertex id, or -1 where the near
