@@ -131,6 +131,49 @@ Scene corner_fans(std::size_t n, int hubs, std::uint64_t seed) {
   return s;
 }
 
+Scene holed_plates(std::size_t n, std::uint64_t seed) {
+  Scene s;
+  s.file = "holed_plates(n=" + std::to_string(n) + ",seed=" + std::to_string(seed) + ")";
+  Rng rng(seed);
+  auto grid = [&](int lo, int hi) { return (lo + static_cast<int>(rng.next() % static_cast<std::uint64_t>(hi - lo + 1))) / 64.0; };
+  static const Vec3 kDirs[] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {0, 1, -1}, {1, 0, 1}, {1, -1, 1}, {-1, 0, 2}};
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 a = kDirs[rng.next() % 8];
+    Vec3 b = kDirs[rng.next() % 8];
+    while (b.x * a.y - b.y * a.x == 0 && b.y * a.z - b.z * a.y == 0 && b.z * a.x - b.x * a.z == 0) b = kDirs[rng.next() % 8];
+    const Vec3 o{grid(0, 40), grid(0, 40), grid(0, 40)};
+    const double w = grid(24, 40), h = grid(24, 40);   // the plate is [0, w] x [0, h] in (a, b)
+    auto at = [&](double u, double v) {
+      s.vertices.push_back({o.x + u * a.x + v * b.x, o.y + u * a.y + v * b.y, o.z + u * a.z + v * b.z});
+      return static_cast<std::uint32_t>(s.vertices.size() - 1);
+    };
+    const std::uint32_t c0 = at(0, 0), c1 = at(w, 0), c2 = at(w, h), c3 = at(0, h);
+    s.faces.push_back({c0, c1, c2, c3});
+    std::vector<IndexRing> holes;
+    // (Quarters and 1/64ths of multiples of 1/64: few bits, so every corner's
+    // coordinates are exact sums and the plate exactly planar.)
+    for (int cu = 0; cu < 4; ++cu)
+      for (int cv = 0; cv < 4; ++cv) {
+        if (rng.next() % 2 == 0) continue;
+        // Inside the cell, 1/64 away from its sides (the cells are 6/64 or more).
+        const double u0 = w * cu / 4 + 1 / 64.0, u1 = w * (cu + 1) / 4 - 1 / 64.0;
+        const double v0 = h * cv / 4 + 1 / 64.0, v1 = h * (cv + 1) / 4 - 1 / 64.0;
+        IndexRing r{at(u0, v0), at(u1, v0), at(u1, v1)};
+        if (rng.next() % 2) r.push_back(at(u0 + (u1 - u0) / 4, v1));
+        if (rng.next() % 2) std::reverse(r.begin(), r.end());
+        holes.push_back(std::move(r));
+      }
+    // Sometimes a hole at the rectangle's far corner, sharing it (the cell there is left empty).
+    if (rng.next() % 2 && !holes.empty() && holes.back().size() == 3) {
+      holes.pop_back();
+      holes.push_back({c2, at(w * 0.75, h * 0.875), at(w * 0.875, h * 0.75)});
+    }
+    s.holes.resize(s.faces.size());
+    s.holes.back() = std::move(holes);
+  }
+  return s;
+}
+
 Scene random_triangles(std::size_t n, double size, std::uint64_t seed) {
   if (!(size > 0 && size <= 1)) throw std::invalid_argument("random_triangles: need 0 < size <= 1");
   Scene s;

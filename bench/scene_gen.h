@@ -51,6 +51,13 @@ Scene random_triangles(std::size_t n, double size, std::uint64_t seed);
 // from it and some meeting only there. Requires hubs >= 1.
 Scene corner_fans(std::size_t n, int hubs, std::uint64_t seed);
 
+// n plates with holes, interpenetrating: each a rectangle in a random plane
+// spanned by two small integer vectors (so that every corner, a multiple of
+// 1/64, lies exactly in it), with holes (triangles and quads, either turn) in
+// some cells of a 4 x 4 grid over it and, sometimes, one more that shares the
+// rectangle's corner. Exactly planar, holes inside and apart: what Scene allows.
+Scene holed_plates(std::size_t n, std::uint64_t seed);
+
 // Franklin's cubical array: k^3 closed, outward-oriented unit cubes (8 shared
 // vertices, 6 quads each) at pitch 1 + gap, so neighbours never touch.
 // Many exactly parallel edges and faces; exercises occlusion culling.
