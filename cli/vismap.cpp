@@ -15,6 +15,7 @@
 #include "arrangements/dxf_writer.h"
 #include "arrangements/json_writer.h"
 #include "arrangements/svg_writer.h"
+#include "cli/views.h"
 #include "engine/camera.h"
 #include "engine/scene.h"
 #include "engine/threads.h"
@@ -59,6 +60,12 @@ camera (default: orthographic, the whole scene seen obliquely):
   --target X,Y,Z       perspective target (default: the scene's centre)
   --fov DEG            perspective vertical field of view (default 40)
   --up X,Y,Z           up direction (default 0,0,1; 0,1,0 when parallel)
+  --views SPEC         many views in one run, the scene read once: orbit:N[,E]
+                       (N orthographic views around the z axis, E degrees
+                       above the horizon, default 30) or a file of one camera
+                       per line (e.g. '--dir -1,-2,-3' or '--eye 4,3,1.6
+                       --target 0,0,1 --fov 60'; '#' comments); each output
+                       is named with %d (or %03d), the view's number from 0
 lines:
   --crease DEG         dihedral angle making a shared edge a crease (default 30)
   --smooth             also draw smooth edges
@@ -138,6 +145,7 @@ int main(int argc, char** argv) {
   bool stats = false, no_regions = false, style_given = false, shading_given = false;
   vismap::Shading shading;   // --shading, --light: applied over the style
   std::vector<std::string> line_specs;   // --line, applied over the style
+  std::string views_spec;                // --views: many cameras, one run
   try {
     std::vector<std::string> args(argv + 1, argv + argc);
     for (std::size_t i = 0; i < args.size(); ++i) {
@@ -191,6 +199,7 @@ int main(int argc, char** argv) {
       else if (a == "--target") cam.target = parse_vec(a, value());
       else if (a == "--fov") cam.fov_deg = parse_double(a, value());
       else if (a == "--up") cam.up = parse_vec(a, value());
+      else if (a == "--views") views_spec = value();
       else if (a == "--crease") {
         eng.crease_deg = parse_double(a, value());
         if (eng.crease_deg < 0 || eng.crease_deg > 180) throw Usage("--crease must be between 0 and 180");
@@ -240,6 +249,15 @@ int main(int argc, char** argv) {
       throw Usage("--painter needs --algorithm newell (the fragments are Newell's)");
     if (!painter_path.empty() && (painter_path == json_path || painter_path == svg_path))
       throw Usage("--painter names the same file as another output");
+    if (!views_spec.empty()) {
+      if (cam.dir || cam.eye || cam.target || cam.fov_deg || cam.up)
+        throw Usage("--views gives the cameras: --dir, --eye, --target, --fov and --up go in its file");
+      if (json_path.empty() && svg_path.empty() && painter_path.empty())
+        throw Usage("--views needs an output (--json, -o or --painter, each named with %d)");
+      for (const std::string* out : {&json_path, &svg_path, &painter_path})
+        if (!out->empty() && (*out == "-" || !vismap::cli::has_view_field(*out)))
+          throw Usage("with --views, each output is a file named with %d for the view's number, got '" + *out + "'");
+    }
   } catch (const Usage& e) {
     std::fprintf(stderr, "vismap: %s\n(run 'vismap --help' for usage)\n", e.what());
     return 2;
@@ -248,56 +266,80 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  std::vector<vismap::cli::NamedView> cameras{{cam, ""}};
+  try {
+    if (!views_spec.empty()) cameras = vismap::cli::parse_views(views_spec);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "vismap: --views: %s\n(run 'vismap --help' for usage)\n", e.what());
+    return 2;
+  } catch (const vismap::InputError& e) {
+    std::fprintf(stderr, "vismap: %s\n", e.what());
+    return 1;
+  }
+
   try {
     vismap::Scene scene = vismap::read_scene(scene_path, limits, format);
-    vismap::View view;
-    try {
-      view = vismap::make_view(cam, scene);
-    } catch (const std::invalid_argument& e) {
-      std::fprintf(stderr, "vismap: %s\n", e.what());
-      return 2;
+    // Every camera first: an impossible one stops the run before any output.
+    std::vector<vismap::View> views;
+    for (const vismap::cli::NamedView& c : cameras) {
+      try {
+        views.push_back(vismap::make_view(c.camera, scene));
+      } catch (const std::invalid_argument& e) {
+        std::fprintf(stderr, "vismap: %s%s\n", c.options.empty() ? "" : (c.options + ": ").c_str(), e.what());
+        return 2;
+      }
     }
     // Regions are computed only where an output shows them: a lines-only drawing
     // and a JSON without regions need the segments alone (the same segments).
     eng.regions = (!json_path.empty() && !no_regions) || (!svg_path.empty() && !svg.lines_only && svg.style.fills) ||
                   !painter_path.empty() ||
                   (json_path.empty() && svg_path.empty());
-    std::vector<vismap::PaintedFragment> fragments;
-    vismap::VisibilityMap map = vismap::compute_map(scene, view, eng, painter_path.empty() ? nullptr : &fragments);
-    if (stats) {
-      for (const auto& [k, v] : map.stats.counts) std::fprintf(stderr, "  %-36s %lld\n", k.c_str(), static_cast<long long>(v));
-      for (const auto& [k, v] : map.stats.seconds) std::fprintf(stderr, "  %-36s %.3f s\n", k.c_str(), v);
-    } else {
-      map.stats.seconds.clear();   // keep the JSON reproducible
-    }
-    // Each output into its temporary (the JSON streamed in pieces: a 10^6-face
-    // map's is about a GB), then all renamed together: a failure leaves no
-    // half-written output.
-    std::vector<vismap::StreamedOutput> outputs;
-    const int threads = vismap::engine::thread_count(eng.threads, scene.faces.size());
-    if (!json_path.empty()) outputs.push_back({json_path, [&](const auto& write) { vismap::write_json(map, write, threads); }});
-    vismap::Drawing drawing;
-    if (!svg_path.empty()) {
-      drawing = vismap::make_drawing(map, svg.page, svg.provenance, svg.optimize_travel);
-      if (svg.optimize_travel) {
-        const char* unit = drawing.at.mm ? "mm" : "px";
-        std::fprintf(stderr, "vismap: pen-up travel %.1f %s -> %.1f %s (%zu paths)\n", drawing.travel_before, unit,
-                     drawing.travel_after, unit, drawing.chains.size());
+    const std::string json_pattern = json_path, svg_pattern = svg_path, painter_pattern = painter_path;
+    for (std::size_t n = 0; n < views.size(); ++n) {
+      const vismap::View& view = views[n];
+      if (!views_spec.empty()) {
+        json_path = json_pattern.empty() ? "" : vismap::cli::view_file_name(json_pattern, n);
+        svg_path = svg_pattern.empty() ? "" : vismap::cli::view_file_name(svg_pattern, n);
+        painter_path = painter_pattern.empty() ? "" : vismap::cli::view_file_name(painter_pattern, n);
+        std::fprintf(stderr, "vismap: view %zu of %zu (%s)\n", n + 1, views.size(), cameras[n].options.c_str());
       }
-      const std::string fmt = vismap::drawing_format(svg_path);
-      outputs.push_back({svg_path, [&, fmt](const auto& write) {
-                           if (fmt == "dxf") write(vismap::to_dxf(drawing));
-                           else if (fmt == "svg") write(vismap::to_svg(map, drawing, scene, view, svg));
-                           else write(vismap::to_cairo(map, drawing, scene, view, svg, fmt));
-                         }});
+      std::vector<vismap::PaintedFragment> fragments;
+      vismap::VisibilityMap map = vismap::compute_map(scene, view, eng, painter_path.empty() ? nullptr : &fragments);
+      if (stats) {
+        for (const auto& [k, v] : map.stats.counts) std::fprintf(stderr, "  %-36s %lld\n", k.c_str(), static_cast<long long>(v));
+        for (const auto& [k, v] : map.stats.seconds) std::fprintf(stderr, "  %-36s %.3f s\n", k.c_str(), v);
+      } else {
+        map.stats.seconds.clear();   // keep the JSON reproducible
+      }
+      // Each output into its temporary (the JSON streamed in pieces: a 10^6-face
+      // map's is about a GB), then all renamed together: a failure leaves no
+      // half-written output.
+      std::vector<vismap::StreamedOutput> outputs;
+      const int threads = vismap::engine::thread_count(eng.threads, scene.faces.size());
+      if (!json_path.empty()) outputs.push_back({json_path, [&](const auto& write) { vismap::write_json(map, write, threads); }});
+      vismap::Drawing drawing;
+      if (!svg_path.empty()) {
+        drawing = vismap::make_drawing(map, svg.page, svg.provenance, svg.optimize_travel);
+        if (svg.optimize_travel) {
+          const char* unit = drawing.at.mm ? "mm" : "px";
+          std::fprintf(stderr, "vismap: pen-up travel %.1f %s -> %.1f %s (%zu paths)\n", drawing.travel_before, unit,
+                       drawing.travel_after, unit, drawing.chains.size());
+        }
+        const std::string fmt = vismap::drawing_format(svg_path);
+        outputs.push_back({svg_path, [&, fmt](const auto& write) {
+                             if (fmt == "dxf") write(vismap::to_dxf(drawing));
+                             else if (fmt == "svg") write(vismap::to_svg(map, drawing, scene, view, svg));
+                             else write(vismap::to_cairo(map, drawing, scene, view, svg, fmt));
+                           }});
+      }
+      if (!painter_path.empty())
+        outputs.push_back({painter_path, [&](const auto& write) { write(vismap::to_painter_svg(fragments, map, scene, view, svg)); }});
+      // All or none; on several threads, the files are written while the rest is formatted.
+      vismap::write_outputs_atomically(outputs, threads > 1);
+      if (json_path.empty() && svg_path.empty() && painter_path.empty())
+        std::fprintf(stderr, "vismap: %s: %zu regions, %zu segments (no output asked for: use -o or --json)\n",
+                     scene_path.c_str(), map.regions.size(), map.segments.size());
     }
-    if (!painter_path.empty())
-      outputs.push_back({painter_path, [&](const auto& write) { write(vismap::to_painter_svg(fragments, map, scene, view, svg)); }});
-    // All or none; on several threads, the files are written while the rest is formatted.
-    vismap::write_outputs_atomically(outputs, threads > 1);
-    if (json_path.empty() && svg_path.empty() && painter_path.empty())
-      std::fprintf(stderr, "vismap: %s: %zu regions, %zu segments (no output asked for: use -o or --json)\n",
-                   scene_path.c_str(), map.regions.size(), map.segments.size());
     return 0;
   } catch (const vismap::InputError& e) {
     std::fprintf(stderr, "vismap: %s\n%s", e.what(), option_hint(e.what()));

@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <functional>
 #include <filesystem>
@@ -498,6 +499,88 @@ TEST(DeepRationals, NestedPerspectiveTunnelIsVerified) {
     EXPECT_GT(longest, 60u);
     r = vismap_test::run({kBin, "verify", scene, out.file("m.json")}, scratch.path());
     EXPECT_EQ(r.status, 0) << both(r);
+  }
+}
+
+// ---- many views in one run ---------------------------------------------------------------
+
+// The cameras --views ran, as the options its progress lines print.
+std::vector<std::vector<std::string>> cameras_run(const std::string& err) {
+  std::vector<std::vector<std::string>> out;
+  for (std::size_t at = err.find("vismap: view "); at != std::string::npos; at = err.find("vismap: view ", at + 1)) {
+    const std::size_t open = err.find('(', at), close = err.find(")\n", at);
+    std::vector<std::string> words;
+    std::string word;
+    for (char c : err.substr(open + 1, close - open - 1) + " ") {
+      if (c != ' ') word += c;
+      else if (!word.empty()) { words.push_back(word); word.clear(); }
+    }
+    out.push_back(words);
+  }
+  return out;
+}
+
+// Each view's files are byte for byte what one run with its camera writes.
+TEST(Views, EachViewIsASingleRunsMap) {
+  TempDir dir("views");
+  const std::string scene = (kData / "holes_block.vmscene.json").string();
+  const std::string file = dir.write("views.txt",
+                                     "# an oblique view and one from inside the tunnel\n--dir -1,-2,-4\n\n"
+                                     "--eye 2,1.5,0.5 --target 2,4,0.5 --fov 100   # the near plane cuts\n");
+  for (const std::string& spec : {std::string("orbit:3,20"), file}) {
+    SCOPED_TRACE(spec);
+    const Result r = vismap_test::run({kBin, scene, "--views", spec, "--hidden", "--json", dir.file("v%03d.json"),
+                                       "-o", dir.file("v%d.svg")},
+                                      dir.path());
+    ASSERT_EQ(r.status, 0) << both(r);
+    const auto cameras = cameras_run(r.err);
+    ASSERT_EQ(cameras.size(), spec == file ? 2u : 3u) << both(r);
+    for (std::size_t k = 0; k < cameras.size(); ++k) {
+      std::vector<std::string> argv = {kBin, scene, "--hidden", "--json", dir.file("one.json"), "-o", dir.file("one.svg")};
+      argv.insert(argv.end(), cameras[k].begin(), cameras[k].end());
+      ASSERT_EQ(vismap_test::run(argv, dir.path()).status, 0);
+      char name[32];
+      std::snprintf(name, sizeof name, "v%03zu.json", k);
+      EXPECT_EQ(vismap_test::slurp(dir.file(name)), vismap_test::slurp(dir.file("one.json"))) << k;
+      EXPECT_EQ(vismap_test::slurp(dir.file("v" + std::to_string(k) + ".svg")), vismap_test::slurp(dir.file("one.svg"))) << k;
+    }
+  }
+  // orbit:4 at elevation 0 looks exactly along the axes (quarter turns are exact).
+  const Result r = vismap_test::run({kBin, scene, "--views", "orbit:4,0", "--json", dir.file("q%d.json")}, dir.path());
+  ASSERT_EQ(r.status, 0) << both(r);
+  EXPECT_EQ(cameras_run(r.err), (std::vector<std::vector<std::string>>{
+                                    {"--dir", "-1,0,0"}, {"--dir", "0,-1,0"}, {"--dir", "1,0,0"}, {"--dir", "0,1,0"}}));
+}
+
+// A bad spec, a bad line of the file (named), an impossible camera in any view:
+// refused before anything is written.
+TEST(Views, BadViewsAreRefusedBeforeAnyOutput) {
+  TempDir dir("views_bad"), out("views_bad_out");
+  const std::string scene = (kData / "cube_axis.off").string();
+  const std::string bad_line = dir.write("bad_line.txt", "--dir 0,0,-1\n--dir 0,0\n");
+  const std::string bad_camera = dir.write("bad_camera.txt", "--dir 0,0,-1\n--eye 1,1,1 --target 1,1,1\n");
+  struct Case {
+    std::vector<std::string> args;
+    int status;
+    std::string message;
+  };
+  for (const Case& c : std::vector<Case>{
+           {{"--views", "orbit:4", "--json", out.file("v.json")}, 2, "named with %d"},
+           {{"--views", "orbit:4", "--json", "-"}, 2, "named with %d"},
+           {{"--views", "orbit:4", "--dir", "0,0,-1", "--json", out.file("v%d.json")}, 2, "--views gives the cameras"},
+           {{"--views", "orbit:0", "--json", out.file("v%d.json")}, 2, "orbit:N"},
+           {{"--views", "orbit:4,90", "--json", out.file("v%d.json")}, 2, "orbit:N"},
+           {{"--views", "orbit:4"}, 2, "needs an output"},
+           {{"--views", bad_line, "--json", out.file("v%d.json")}, 1, bad_line + ":2: --dir expects X,Y,Z"},
+           {{"--views", dir.file("none.txt"), "--json", out.file("v%d.json")}, 1, "cannot open the views file"},
+           {{"--views", bad_camera, "--json", out.file("v%d.json")}, 2, "must differ"},
+       }) {
+    std::vector<std::string> argv = {kBin, scene};
+    argv.insert(argv.end(), c.args.begin(), c.args.end());
+    const Result r = vismap_test::run(argv, dir.path());
+    EXPECT_EQ(r.status, c.status) << c.message << "\n" << both(r);
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << both(r);
+    EXPECT_TRUE(out.names().empty()) << c.message;
   }
 }
 

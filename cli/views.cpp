@@ -1,0 +1,159 @@
+#include "cli/views.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+namespace vismap::cli {
+namespace {
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+std::string vec(const Vec3& v) { return number(v.x) + "," + number(v.y) + "," + number(v.z); }
+
+// A finite number, all of `text`; false otherwise.
+bool parse_number(const std::string& text, double& out) {
+  std::size_t used = 0;
+  try {
+    out = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return false;
+  }
+  return used == text.size() && std::isfinite(out);
+}
+
+bool parse_vec(const std::string& text, Vec3& out) {
+  double v[3];
+  std::size_t start = 0;
+  for (int i = 0; i < 3; ++i) {
+    const std::size_t comma = i < 2 ? text.find(',', start) : std::string::npos;
+    if (i < 2 && comma == std::string::npos) return false;
+    if (!parse_number(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start), v[i]))
+      return false;
+    start = comma + 1;
+  }
+  out = {v[0], v[1], v[2]};
+  return true;
+}
+
+// cos and sin of k/n of a turn: exact at the quarter turns (so that orbit:4
+// looks along the axes' planes exactly), else the library's.
+std::pair<double, double> turn(int k, int n) {
+  if ((4 * k) % n == 0) {
+    static const double c[4] = {1, 0, -1, 0}, s[4] = {0, 1, 0, -1};
+    const int q = (4 * k / n) % 4;
+    return {c[q], s[q]};
+  }
+  const double a = 2 * std::numbers::pi * k / n;
+  return {std::cos(a), std::sin(a)};
+}
+
+std::vector<NamedView> orbit(const std::string& args) {
+  const std::size_t comma = args.find(',');
+  double n = 0, elevation = 30;
+  if (!parse_number(args.substr(0, comma), n) || n < 1 || n > 100000 || n != std::floor(n) ||
+      (comma != std::string::npos && !parse_number(args.substr(comma + 1), elevation)) || elevation <= -90 ||
+      elevation >= 90)
+    throw std::invalid_argument("orbit:N[,ELEVATION] takes a whole number of views N from 1 to 100000 and an "
+                                "elevation strictly between -90 and 90 degrees, got 'orbit:" + args + "'");
+  std::vector<NamedView> out;
+  const double e = elevation * std::numbers::pi / 180;
+  const double ce = elevation == 0 ? 1 : std::cos(e), se = elevation == 0 ? 0 : std::sin(e);
+  for (int k = 0; k < static_cast<int>(n); ++k) {
+    const auto [ca, sa] = turn(k, static_cast<int>(n));
+    NamedView v;
+    v.camera.dir = Vec3{0 - ce * ca, 0 - ce * sa, 0 - se};   // (0 - x: no "-0" in the options)
+    v.options = "--dir " + vec(*v.camera.dir);
+    out.push_back(std::move(v));
+  }
+  return out;
+}
+
+// One line of a views file: the camera options it gives.
+NamedView camera_line(const std::string& line, const std::string& where) {
+  std::istringstream words(line);
+  std::string opt, value;
+  NamedView v;
+  while (words >> opt) {
+    if (!(words >> value)) throw InputError(where + ": " + opt + " needs a value");
+    Vec3 p;
+    double d;
+    if (opt == "--fov") {
+      if (!parse_number(value, d)) throw InputError(where + ": --fov expects a finite number, got '" + value + "'");
+      v.camera.fov_deg = d;
+    } else if (opt == "--dir" || opt == "--eye" || opt == "--target" || opt == "--up") {
+      if (!parse_vec(value, p)) throw InputError(where + ": " + opt + " expects X,Y,Z (finite numbers), got '" + value + "'");
+      (opt == "--dir" ? v.camera.dir : opt == "--eye" ? v.camera.eye : opt == "--target" ? v.camera.target : v.camera.up) = p;
+    } else {
+      throw InputError(where + ": expected a camera option (--dir, --eye, --target, --fov, --up), found '" + opt + "'");
+    }
+    v.options += (v.options.empty() ? "" : " ") + opt + " " + value;
+  }
+  return v;
+}
+
+std::vector<NamedView> views_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot open the views file");
+  std::vector<NamedView> out;
+  std::string line;
+  for (std::size_t n = 1; std::getline(in, line); ++n) {
+    const std::size_t hash = line.find('#');
+    if (hash != std::string::npos) line.erase(hash);
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    out.push_back(camera_line(line, path + ":" + std::to_string(n)));
+  }
+  if (out.empty()) throw InputError(path + ": no view in the views file (one camera per line, e.g. --dir -1,-2,-3)");
+  return out;
+}
+
+}  // namespace
+
+std::vector<NamedView> parse_views(const std::string& spec) {
+  if (spec.rfind("orbit:", 0) == 0) return orbit(spec.substr(6));
+  return views_file(spec);
+}
+
+namespace {
+
+// The field: "%d" or "%0Nd" at `at`, `len` characters long.
+bool find_field(const std::string& p, std::size_t& at, std::size_t& len, int& width) {
+  for (at = p.find('%'); at != std::string::npos; at = p.find('%', at + 1)) {
+    std::size_t i = at + 1;
+    width = 0;
+    if (i < p.size() && p[i] == '0')
+      for (++i; i < p.size() && p[i] >= '0' && p[i] <= '9' && width < 100; ++i) width = 10 * width + (p[i] - '0');
+    if (i < p.size() && p[i] == 'd') {
+      len = i + 1 - at;
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+bool has_view_field(const std::string& pattern) {
+  std::size_t at, len;
+  int width;
+  return find_field(pattern, at, len, width);
+}
+
+std::string view_file_name(const std::string& pattern, std::size_t k) {
+  std::size_t at, len;
+  int width;
+  if (!find_field(pattern, at, len, width)) return pattern;
+  std::string n = std::to_string(k);
+  if (static_cast<int>(n.size()) < width) n.insert(0, static_cast<std::size_t>(width) - n.size(), '0');
+  return pattern.substr(0, at) + n + pattern.substr(at + len);
+}
+
+}  // namespace vismap::cli
