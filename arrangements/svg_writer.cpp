@@ -18,13 +18,17 @@ std::string num(double v) {
 std::string xy(const std::array<double, 2>& p) { return num(p[0]) + " " + num(p[1]); }
 std::string xy(const Placement& at, const Point2& p) { return xy(at.at(p.x.get_d(), p.y.get_d())); }
 
-std::string header(const Placement& at) {
+}  // namespace
+
+std::string svg_header(const Placement& at) {
   const std::string unit = at.mm ? "mm" : "";
   const std::string w = at.mm ? num(at.width) : num(std::ceil(at.width)), h = at.mm ? num(at.height) : num(std::ceil(at.height));
   return "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\" "
          "width=\"" + w + unit + "\" height=\"" + h + unit + "\" viewBox=\"0 0 " + num(at.width) + " " + num(at.height) +
          "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
 }
+
+namespace {
 
 std::string layer(const std::string& id, const std::string& label, const std::string& attributes) {
   return "<g inkscape:groupmode=\"layer\" id=\"" + id + "\" inkscape:label=\"" + label + "\" " + attributes + ">\n";
@@ -43,8 +47,8 @@ std::string fill_of(const Scene& scene, const View& view, int face, const Shadin
 namespace {
 
 std::string regions_layer(const VisibilityMap& map, const Placement& at, const Scene& scene, const View& view,
-                          const Shading& shading) {
-  std::string out = layer("vismap-regions", "regions", "stroke=\"none\" fill-rule=\"evenodd\"");
+                          const Shading& shading, const std::string& id_prefix) {
+  std::string out = layer(id_prefix + "vismap-regions", "regions", "stroke=\"none\" fill-rule=\"evenodd\"");
   for (const auto& r : map.regions) {
     out += "<path fill=\"" + fill_of(scene, view, r.face, shading) + "\" d=\"";
     auto ring = [&](const Ring& r) {
@@ -99,9 +103,14 @@ std::string to_svg(const VisibilityMap& map, const Scene& scene, const View& vie
 
 std::string to_svg(const VisibilityMap& map, const Drawing& drawing, const Scene& scene, const View& view,
                    const SvgOptions& opt) {
+  return svg_header(drawing.at) + svg_layers(map, drawing, scene, view, opt, "") + "</svg>\n";
+}
+
+std::string svg_layers(const VisibilityMap& map, const Drawing& drawing, const Scene& scene, const View& view,
+                       const SvgOptions& opt, const std::string& id_prefix) {
   const Placement& at = drawing.at;
-  std::string out = header(at);
-  if (opt.style.fills && !opt.lines_only) out += regions_layer(map, at, scene, view, opt.style.shading);
+  std::string out;
+  if (opt.style.fills && !opt.lines_only) out += regions_layer(map, at, scene, view, opt.style.shading, id_prefix);
   // One layer per class that has lines, in drawing order (hidden first, under the rest).
   for (std::size_t k = 0; k < kLineClasses; ++k) {
     const auto cls = static_cast<LineClass>(k);
@@ -109,7 +118,7 @@ std::string to_svg(const VisibilityMap& map, const Drawing& drawing, const Scene
     bool any = false;
     for (const Chain& c : drawing.chains) {
       if (c.cls != cls) continue;
-      if (!any) out += layer(std::string("vismap-") + class_name(cls), class_name(cls), stroke(ls, at, opt.style.cut_dashes));
+      if (!any) out += layer(id_prefix + "vismap-" + class_name(cls), class_name(cls), stroke(ls, at, opt.style.cut_dashes));
       any = true;
       out += "<path d=\"" + path_data(c, ls, at, opt.style.cut_dashes) + "\"";
       if (opt.provenance) out += std::string(" data-kind=\"") + to_string(c.kind) + "\" data-faces=\"" + faces_text(c.faces) + "\"";
@@ -117,13 +126,13 @@ std::string to_svg(const VisibilityMap& map, const Drawing& drawing, const Scene
     }
     if (any) out += "</g>\n";
   }
-  return out + "</svg>\n";
+  return out;
 }
 
 std::string to_painter_svg(const std::vector<PaintedFragment>& fragments, const VisibilityMap& map,
                            const Scene& scene, const View& view, const SvgOptions& opt) {
   const Placement at = place(map, opt.page);
-  std::string out = header(at);
+  std::string out = svg_header(at);
   out += "<g stroke=\"none\">\n";
   for (const PaintedFragment& f : fragments) {   // in drawing order: later ones paint over
     out += "<path fill=\"" + fill_of(scene, view, f.face, opt.style.shading) + "\" d=\"";

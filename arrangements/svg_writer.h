@@ -27,6 +27,13 @@ std::string to_svg(const VisibilityMap& map, const Scene& scene, const View& vie
 std::string to_svg(const VisibilityMap& map, const Drawing& drawing, const Scene& scene, const View& view,
                    const SvgOptions& opt);
 
+// The pieces of a document, for pages that hold several drawings (sheet.h):
+// the <svg> element of a page (its closing tag is the caller's), and one
+// drawing's layers, their ids prefixed (unique on the page).
+std::string svg_header(const Placement& at);
+std::string svg_layers(const VisibilityMap& map, const Drawing& drawing, const Scene& scene, const View& view,
+                       const SvgOptions& opt, const std::string& id_prefix);
+
 // Newell's painter's drawing: the fragments filled one after another in drawing
 // order (back to front), each with its face's shade, on the same page as
 // to_svg's drawing of `map` (so the two can be laid over each other).

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -115,9 +116,53 @@ std::vector<NamedView> views_file(const std::string& path) {
   return out;
 }
 
+bool first_angle(const std::string& spec) {
+  if (spec == "sheet" || spec == "sheet:first") return true;
+  if (spec == "sheet:third") return false;
+  throw std::invalid_argument("a sheet is sheet, sheet:first or sheet:third, got '" + spec + "'");
+}
+
+// Front, top, right and isometric, in their cells: first-angle puts the top view
+// under the front one and the right view left of it; third-angle above and right.
+std::vector<NamedView> sheet(const std::string& spec) {
+  const bool first = first_angle(spec);
+  struct Cell {
+    const char* label;
+    Vec3 dir;
+    std::optional<Vec3> up;
+    int row, col;
+  };
+  const Cell cells[4] = {
+      {"FRONT", {0, 1, 0}, std::nullopt, first ? 0 : 1, first ? 1 : 0},
+      {"TOP", {0, 0, -1}, Vec3{0, 1, 0}, first ? 1 : 0, first ? 1 : 0},
+      {"RIGHT", {-1, 0, 0}, std::nullopt, first ? 0 : 1, first ? 0 : 1},
+      {"ISOMETRIC", {-1, 1, -1}, std::nullopt, first ? 1 : 0, first ? 0 : 1},
+  };
+  std::vector<NamedView> out;
+  for (const Cell& c : cells) {
+    NamedView v;
+    v.camera.dir = c.dir;
+    v.camera.up = c.up;
+    v.options = "--dir " + vec(c.dir) + (c.up ? " --up " + vec(*c.up) : "");
+    v.label = c.label;
+    v.row = c.row;
+    v.col = c.col;
+    out.push_back(std::move(v));
+  }
+  return out;
+}
+
 }  // namespace
 
+bool is_sheet(const std::string& spec) { return spec.rfind("sheet", 0) == 0 && (spec.size() == 5 || spec[5] == ':'); }
+
+std::string sheet_note(const std::string& spec) {
+  if (!is_sheet(spec)) return "";
+  return first_angle(spec) ? "FIRST-ANGLE PROJECTION" : "THIRD-ANGLE PROJECTION";
+}
+
 std::vector<NamedView> parse_views(const std::string& spec) {
+  if (is_sheet(spec)) return sheet(spec);
   if (spec.rfind("orbit:", 0) == 0) return orbit(spec.substr(6));
   return views_file(spec);
 }

@@ -14,6 +14,7 @@
 #include "arrangements/cairo_writer.h"
 #include "arrangements/dxf_writer.h"
 #include "arrangements/json_writer.h"
+#include "arrangements/sheet.h"
 #include "arrangements/svg_writer.h"
 #include "cli/views.h"
 #include "engine/camera.h"
@@ -62,9 +63,11 @@ camera (default: orthographic, the whole scene seen obliquely):
   --up X,Y,Z           up direction (default 0,0,1; 0,1,0 when parallel)
   --views SPEC         many views in one run, the scene read once: orbit:N[,E]
                        (N orthographic views around the z axis, E degrees
-                       above the horizon, default 30) or a file of one camera
+                       above the horizon, default 30), a file of one camera
                        per line (e.g. '--dir -1,-2,-3' or '--eye 4,3,1.6
-                       --target 0,0,1 --fov 60'; '#' comments); each output
+                       --target 0,0,1 --fov 60'; '#' comments), or
+                       sheet[:first|:third] (front, top, right and isometric
+                       views on one SVG page, -o NAME.svg); each other output
                        is named with %d (or %03d), the view's number from 0
 lines:
   --crease DEG         dihedral angle making a shared edge a crease (default 30)
@@ -254,8 +257,11 @@ int main(int argc, char** argv) {
         throw Usage("--views gives the cameras: --dir, --eye, --target, --fov and --up go in its file");
       if (json_path.empty() && svg_path.empty() && painter_path.empty())
         throw Usage("--views needs an output (--json, -o or --painter, each named with %d)");
+      const bool sheet = !vismap::cli::sheet_note(views_spec).empty();
+      if (sheet && !svg_path.empty() && vismap::drawing_format(svg_path) != "svg")
+        throw Usage("--views sheet draws one SVG page (-o NAME.svg), got '" + svg_path + "'");
       for (const std::string* out : {&json_path, &svg_path, &painter_path})
-        if (!out->empty() && (*out == "-" || !vismap::cli::has_view_field(*out)))
+        if (!out->empty() && !(sheet && out == &svg_path) && (*out == "-" || !vismap::cli::has_view_field(*out)))
           throw Usage("with --views, each output is a file named with %d for the view's number, got '" + *out + "'");
     }
   } catch (const Usage& e) {
@@ -266,7 +272,8 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  std::vector<vismap::cli::NamedView> cameras{{cam, ""}};
+  std::vector<vismap::cli::NamedView> cameras(1);
+  cameras[0].camera = cam;
   try {
     if (!views_spec.empty()) cameras = vismap::cli::parse_views(views_spec);
   } catch (const std::invalid_argument& e) {
@@ -294,7 +301,10 @@ int main(int argc, char** argv) {
     eng.regions = (!json_path.empty() && !no_regions) || (!svg_path.empty() && !svg.lines_only && svg.style.fills) ||
                   !painter_path.empty() ||
                   (json_path.empty() && svg_path.empty());
-    const std::string json_pattern = json_path, svg_pattern = svg_path, painter_pattern = painter_path;
+    // A sheet: the views' maps kept for the one page drawn after them.
+    const std::string note = vismap::cli::sheet_note(views_spec), sheet_path = note.empty() ? "" : svg_path;
+    std::vector<vismap::VisibilityMap> sheet_maps;
+    const std::string json_pattern = json_path, svg_pattern = note.empty() ? svg_path : "", painter_pattern = painter_path;
     for (std::size_t n = 0; n < views.size(); ++n) {
       const vismap::View& view = views[n];
       if (!views_spec.empty()) {
@@ -336,9 +346,16 @@ int main(int argc, char** argv) {
         outputs.push_back({painter_path, [&](const auto& write) { write(vismap::to_painter_svg(fragments, map, scene, view, svg)); }});
       // All or none; on several threads, the files are written while the rest is formatted.
       vismap::write_outputs_atomically(outputs, threads > 1);
-      if (json_path.empty() && svg_path.empty() && painter_path.empty())
+      if (json_path.empty() && svg_path.empty() && painter_path.empty() && views_spec.empty())
         std::fprintf(stderr, "vismap: %s: %zu regions, %zu segments (no output asked for: use -o or --json)\n",
                      scene_path.c_str(), map.regions.size(), map.segments.size());
+      if (!sheet_path.empty()) sheet_maps.push_back(std::move(map));
+    }
+    if (!sheet_path.empty()) {
+      std::vector<vismap::SheetView> sheet;
+      for (std::size_t n = 0; n < views.size(); ++n)
+        sheet.push_back({&sheet_maps[n], &views[n], cameras[n].label, cameras[n].row, cameras[n].col});
+      vismap::write_file_atomically(sheet_path, vismap::to_sheet_svg(sheet, scene, svg, note));
     }
     return 0;
   } catch (const vismap::InputError& e) {

@@ -10,6 +10,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
+#include <sstream>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -550,6 +553,67 @@ TEST(Views, EachViewIsASingleRunsMap) {
   ASSERT_EQ(r.status, 0) << both(r);
   EXPECT_EQ(cameras_run(r.err), (std::vector<std::vector<std::string>>{
                                     {"--dir", "-1,0,0"}, {"--dir", "0,-1,0"}, {"--dir", "1,0,0"}, {"--dir", "0,1,0"}}));
+}
+
+// The least and greatest page x and y of the path points in group `id` of a sheet.
+std::array<double, 4> group_box(const std::string& svg, const std::string& id) {
+  const std::size_t begin = svg.find("<g id=\"" + id + "\">"), end = svg.find("<text", begin);
+  std::array<double, 4> box{1e300, 1e300, -1e300, -1e300};
+  for (std::size_t d = svg.find(" d=\"", begin); d < end; d = svg.find(" d=\"", d + 1)) {
+    std::istringstream in(svg.substr(d + 4, svg.find('"', d + 4) - d - 4));
+    std::string word;
+    std::vector<double> xy;
+    while (in >> word) {
+      if (word[0] == 'M' || word[0] == 'L') word = word.substr(1);
+      if (word == "Z" || word.empty()) continue;
+      xy.push_back(std::stod(word));
+      if (xy.size() == 2) {
+        box = {std::min(box[0], xy[0]), std::min(box[1], xy[1]), std::max(box[2], xy[0]), std::max(box[3], xy[1])};
+        xy.clear();
+      }
+    }
+  }
+  return box;
+}
+
+// --views sheet: four views on one SVG page, each map a single run's, the
+// orthographic views at one scale and lined up as first- or third-angle wants.
+TEST(Views, ASheetLinesUpFrontTopAndRight) {
+  TempDir dir("views_sheet");
+  const std::string scene = (kData / "holes_block.vmscene.json").string();
+  for (const std::string angle : {"first", "third"}) {
+    SCOPED_TRACE(angle);
+    const Result r = vismap_test::run({kBin, scene, "--views", "sheet:" + angle, "--hidden", "--style", "technical",
+                                       "--page", "a4", "-o", dir.file("sheet.svg"), "--json", dir.file("s%d.json")},
+                                      dir.path());
+    ASSERT_EQ(r.status, 0) << both(r);
+    const auto cameras = cameras_run(r.err);
+    ASSERT_EQ(cameras.size(), 4u);
+    for (std::size_t k = 0; k < cameras.size(); ++k) {
+      std::vector<std::string> argv = {kBin, scene, "--hidden", "--json", dir.file("one.json")};
+      argv.insert(argv.end(), cameras[k].begin(), cameras[k].end());
+      ASSERT_EQ(vismap_test::run(argv, dir.path()).status, 0);
+      EXPECT_EQ(vismap_test::slurp(dir.file("s" + std::to_string(k) + ".json")), vismap_test::slurp(dir.file("one.json")));
+    }
+    const std::string svg = vismap_test::slurp(dir.file("sheet.svg"));
+    EXPECT_NE(svg.find(angle == "first" ? "FIRST-ANGLE PROJECTION" : "THIRD-ANGLE PROJECTION"), std::string::npos);
+    const auto front = group_box(svg, "front"), top = group_box(svg, "top"), right = group_box(svg, "right");
+    ASSERT_LT(front[0], front[2]);
+    // The block is 4 wide (x), 4 deep (y), 1 high (z): front and top share x, front and right share z.
+    EXPECT_NEAR(front[0], top[0], 0.01);
+    EXPECT_NEAR(front[2], top[2], 0.01);
+    EXPECT_NEAR(front[1], right[1], 0.01);
+    EXPECT_NEAR(front[3], right[3], 0.01);
+    EXPECT_NEAR((front[2] - front[0]) / (front[3] - front[1]), 4.0, 0.01);   // one scale across and up
+    EXPECT_NEAR(top[3] - top[1], front[2] - front[0], 0.01);                  // the top view is 4 deep
+    // First angle: the top view under the front one, the right view left of it; third angle the other way.
+    EXPECT_EQ(top[1] > front[3], angle == "first");
+    EXPECT_EQ(right[2] < front[0], angle == "first");
+  }
+  const Result bad = vismap_test::run({kBin, scene, "--views", "sheet:second", "-o", dir.file("x.svg")}, dir.path());
+  EXPECT_EQ(bad.status, 2) << both(bad);
+  const Result pdf = vismap_test::run({kBin, scene, "--views", "sheet", "-o", dir.file("x.pdf")}, dir.path());
+  EXPECT_EQ(pdf.status, 2) << both(pdf);
 }
 
 // A bad spec, a bad line of the file (named), an impossible camera in any view:
