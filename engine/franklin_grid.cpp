@@ -579,6 +579,19 @@ bool one_side_in_world(const Facet& F, const Facet& G, const std::vector<Vec3>& 
   return on_one_side(F, G, [&](std::size_t k) { return world::orientation(o, a, b, vertex_at(world, F.id[k])); });
 }
 
+// Whether triangle F (of a planar polygon) has a diagonal in G's plane: then,
+// though on one side of it, the polygon may cross it there (meets_plane).
+bool along_diagonal_in_world(const Facet& F, const Facet& G, const std::vector<Vec3>& world) {
+  if (!F.diagonals || !F.planar) return false;
+  const Vec3 &o = vertex_at(world, G.id[0]), &a = vertex_at(world, G.id[1]), &b = vertex_at(world, G.id[2]);
+  auto on_plane = [&](std::size_t k) {
+    return G.has_vertex(F.id[k]) || world::orientation(o, a, b, vertex_at(world, F.id[k])) == 0;
+  };
+  for (std::size_t k = 0; k < 3; ++k)
+    if (F.on_diagonal(k) && on_plane(k) && on_plane((k + 1) % 3)) return true;
+  return false;
+}
+
 // Triangles A = (v, a1, a2) and B = (v, b1, b2) that share only corner v and
 // each cross the other's plane (the corners they do not share strictly on both
 // sides): each meets the line where the planes meet in a segment from v, A's
@@ -604,8 +617,9 @@ bool meet_only_at_shared_corner(const Facet& A, const Facet& B, const std::vecto
 // neighbours, apart). False: not proved.
 bool apart_in_world(const Facet& A, const Facet& B, const std::vector<Vec3>& world) {
   if (A.id.size() != 3 || B.id.size() != 3 || !input_corners(A) || !input_corners(B)) return false;
-  if (A.diagonals || B.diagonals) return false;   // touching along a diagonal may be crossing (meets_plane)
-  if (one_side_in_world(A, B, world) || one_side_in_world(B, A, world)) return true;
+  if ((one_side_in_world(A, B, world) && !along_diagonal_in_world(A, B, world)) ||
+      (one_side_in_world(B, A, world) && !along_diagonal_in_world(B, A, world)))
+    return true;
   // Each crosses the other's plane strictly (a shared corner lies in both).
   return meet_only_at_shared_corner(A, B, world);
 }
@@ -621,7 +635,7 @@ enum class Meets { Apart, Cross, AlongDiagonal };
 template <class Side>
 Meets meets_plane(const Facet& F, const Facet& G, Side&& side, std::size_t& diagonal) {
   if (!on_one_side(F, G, side)) return Meets::Cross;
-  if (!F.diagonals) return Meets::Apart;
+  if (!F.diagonals || !F.planar) return Meets::Apart;   // (a fan's fold is no crossing: the face has no one plane)
   const std::size_t n = F.id.size();   // (a facet with diagonals is a triangle, cut or not: n <= 4)
   int sign[8];
   bool positive = false;
@@ -701,6 +715,17 @@ bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3
   p = p0 + lo * d;
   q = p0 + hi * d;
   return true;
+}
+
+Curve crossing_curve(const Facet& A, const Facet& B, int fa, int fb, const P2& p, const P2& q, std::deque<P3>& ends) {
+  P3 s(p, A.depth_at(p)), t(q, A.depth_at(q));
+  if ((A.diagonals && A.planar) || (B.diagonals && B.planar))
+    for (const P3* e : {&s, &t}) {
+      to_mpq(e->x);
+      to_mpq(e->y);
+      to_mpq(e->z);
+    }
+  return intersection_curve(s, t, fa, fb, A.face, B.face, ends);
 }
 
 // Facets with an edge in common (by identity) meet only along it, or lie in one
@@ -835,9 +860,7 @@ void add_intersection_lines(const Grid& g, ScreenScene& ss, int threads, Stats& 
   });
   std::deque<P3>& line_ends = ss.ends.emplace_back();
   for (const Crossing& c : found) {
-    const Facet &A = ss.facets[c.fa], &B = ss.facets[c.fb];
-    ss.curves.push_back(
-        intersection_curve(P3(c.p, A.depth_at(c.p)), P3(c.q, A.depth_at(c.q)), c.fa, c.fb, A.face, B.face, line_ends));
+    ss.curves.push_back(crossing_curve(ss.facets[c.fa], ss.facets[c.fb], c.fa, c.fb, c.p, c.q, line_ends));
   }
   stats.count("facet_pairs_tested", tested);
   stats.count("intersection_lines", static_cast<std::int64_t>(found.size()));

@@ -1,5 +1,6 @@
 // Franklin's variable grid (steps 2-9, 11), exact. Internal to the engine.
 #pragma once
+#include <deque>
 #include <vector>
 
 #include "engine/screen_scene.h"
@@ -62,6 +63,15 @@ CGAL::Sign depth_above(const P3& p, const Facet& f, const std::vector<Vec3>* wor
 // Where facets A and B cross in 3D strictly inside both projections, as a screen
 // segment p-q; false when they do not, or only along an edge of either.
 bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3>* world, P2& p, P2& q);
+
+// The curve of the crossing p-q of facets A and B (fa, fb), its depths A's.
+// Where A or B touches the other's plane along a diagonal, the line lies on
+// facet edges and predicates on its ends are exactly degenerate: their exact
+// values are computed here, before the threads share them. (A lazy number's
+// interval narrows once its exact value is known, so which thread computed it
+// first would change which later predicates the filter settles, and the counts
+// in the JSON must not depend on the thread count.)
+Curve crossing_curve(const Facet& A, const Facet& B, int fa, int fb, const P2& p, const P2& q, std::deque<P3>& ends);
 // Facets with an edge in common (by identity): they never pierce each other.
 bool share_an_edge(const Facet& A, const Facet& B);
 // sign(depth of C - depth of D) at point p of the common screen line of curves C

@@ -214,9 +214,8 @@ void add_all_intersection_lines(ScreenScene& ss, const WorldFacets& wf, int thre
                 threads);
   std::deque<P3>& line_ends = ss.ends.emplace_back();
   for (const Crossing& c : found) {
-    const Facet &A = ss.facets[static_cast<std::size_t>(c.fa)], &B = ss.facets[static_cast<std::size_t>(c.fb)];
-    ss.curves.push_back(
-        intersection_curve(P3(c.p, A.depth_at(c.p)), P3(c.q, A.depth_at(c.q)), c.fa, c.fb, A.face, B.face, line_ends));
+    ss.curves.push_back(crossing_curve(ss.facets[static_cast<std::size_t>(c.fa)], ss.facets[static_cast<std::size_t>(c.fb)],
+                                       c.fa, c.fb, c.p, c.q, line_ends));
   }
 }
 
@@ -314,21 +313,27 @@ class Visibility {
   // Whether p lies inside a side of f that another facet of f's face shares (a
   // diagonal inside the polygon: a fan's, or an ear clipping's) and the two lie on
   // either side of it on the screen: then p is inside the face's projection,
-  // though on the edge of both facets.
+  // though on the edge of both facets. Sides are matched by their corners' ids;
+  // a diagonal the near plane cut ends at a cut point (no id), matched by its
+  // position (both facets cut the diagonal at the same point).
   bool across_diagonal(const Facet& f, const std::vector<int>& near, const P2& p) const {
     const std::size_t n = f.v.size();
     for (std::size_t k = 0; k < n; ++k) {
-      const VertexId a = f.id[k], b = f.id[(k + 1) % n];
-      const P2 &u = f.v[k].xy(), &v = f.v[(k + 1) % n].xy();
-      if (a < 0 || b < 0 || CGAL::orientation(u, v, p) != CGAL::COLLINEAR) continue;
+      const std::size_t k1 = (k + 1) % n;
+      const P2 &u = f.v[k].xy(), &v = f.v[k1].xy();
+      if ((f.id[k] < 0 || f.id[k1] < 0) && !f.on_diagonal(k)) continue;   // (a near-plane cut, or a side cut short)
+      if (CGAL::orientation(u, v, p) != CGAL::COLLINEAR) continue;
       if (CGAL::compare_xy(p, u) == CGAL::compare_xy(p, v)) continue;   // (not between its ends)
       const CGAL::Orientation mine = CGAL::orientation(u, v, f.v[(k + 2) % n].xy());
       for (int gi : near) {
         const Facet& g = ss_.facets[static_cast<std::size_t>(gi)];
         if (&g == &f || g.face != f.face || g.v.empty()) continue;
         for (std::size_t j = 0, m = g.v.size(); j < m; ++j) {
-          const VertexId c = g.id[j], d = g.id[(j + 1) % m];
-          if (!((c == a && d == b) || (c == b && d == a))) continue;
+          const std::size_t j1 = (j + 1) % m;
+          auto same = [&](std::size_t fk, std::size_t gj) {
+            return f.id[fk] >= 0 ? f.id[fk] == g.id[gj] : g.id[gj] < 0 && f.v[fk].xy() == g.v[gj].xy();
+          };
+          if (!((same(k, j) && same(k1, j1)) || (same(k, j1) && same(k1, j)))) continue;
           if (CGAL::orientation(u, v, g.v[(j + 2) % m].xy()) == -mine) return true;
         }
       }

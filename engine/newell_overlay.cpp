@@ -137,7 +137,7 @@ constexpr int kCrosses = -2, kApart = -1;
 int meets_plane(const Facet& F, const Facet& G) {
   const int sides = sides_of_plane(F.v, {}, -1, G);
   if (sides == kBoth) return kCrosses;
-  if (!F.diagonals || sides != kBehind) return kApart;
+  if (!F.diagonals || !F.planar || sides != kBehind) return kApart;   // (a fan's fold is no crossing)
   const std::size_t n = F.v.size();   // (a facet with diagonals is a triangle, cut or not: n <= 4)
   auto on_plane = [&](std::size_t k) { return is_vertex_of(F.v[k], G) || plane_side(F.v[k], G) == CGAL::ZERO; };
   for (std::size_t k = 0; k < n; ++k)

@@ -498,9 +498,9 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     f.face = w.face;
     f.planar = w.planar;
     const std::size_t n = w.v.size();
-    // (A diagonal of a planar polygon keeps its role on both sides of a cut.)
+    // (A diagonal keeps its role on both sides of a cut.)
     auto mark_diagonal = [&](std::size_t k) {
-      if (w.planar && w.role[k] == EdgeRole::Internal && f.v.size() <= 8)
+      if (w.role[k] == EdgeRole::Internal && f.v.size() <= 8)
         f.diagonals |= static_cast<std::uint8_t>(1u << (f.v.size() - 1));
     };
     for (std::size_t k = 0; k < n; ++k) {

@@ -70,9 +70,10 @@ struct Facet {
   Facing facing = Facing::EdgeOn;
   bool occluder = false;         // hides and labels: not edge-on, not culled
   bool planar = true;            // false: a fan piece of a non-planar polygon
-  // Bit k: edge v[k] -> v[k+1] lies on a diagonal inside a planar polygon (a
-  // triangulation's edge, EdgeRole::Internal; such facets are triangles, at
-  // most four corners after the near-plane cut). The polygon goes on past it.
+  // Bit k: edge v[k] -> v[k+1] lies on a diagonal inside the polygon (a
+  // triangulation's or a fan's edge, EdgeRole::Internal; such facets are
+  // triangles, at most four corners after the near-plane cut). The polygon goes
+  // on past it (in its plane where `planar`).
   std::uint8_t diagonals = 0;
   bool on_diagonal(std::size_t k) const { return k < 8 && ((diagonals >> k) & 1u); }
   double zlo = 0, zhi = 0;       // contains the exact depths over the facet (of its vertices)
