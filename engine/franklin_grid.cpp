@@ -1491,12 +1491,19 @@ void classify_curve(const Grid& g, const ScreenScene& ss, int ci, std::vector<P2
   auto key_less = [&](const P2& a, const P2& b) {   // predicates: no coordinates built
     return (use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b)) == (increasing ? CGAL::SMALLER : CGAL::LARGER);
   };
+  // The cut points are shared with the curves cut at them, classified on other
+  // threads, and a lazy point's interval narrows once its exact value is known:
+  // whether the filter settles a comparison of them depends on which thread got
+  // there first, so these comparisons are not counted (the stats must not
+  // depend on the thread count).
+  const exact::FilterCounts before_sort = exact::filter_counts;
   std::sort(pts.begin(), pts.end(), key_less);
   // Points of one curve are equal when their dominant coordinates are.
   auto same_key = [&](const P2& a, const P2& b) {
     return (use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b)) == CGAL::EQUAL;
   };
   pts.erase(std::unique(pts.begin(), pts.end(), same_key), pts.end());
+  exact::filter_counts = before_sort;
   pts.insert(pts.begin(), s);
   pts.push_back(t);
   Probe probe;
