@@ -9,6 +9,8 @@
 #include <deque>
 #include <string>
 
+#include "engine/simple_ring.h"
+
 namespace vismap::engine {
 namespace {
 
@@ -70,24 +72,6 @@ int projection_axis(const Q3& a, const Q3& b, const Q3& c) {
   for (int axis : {2, 1, 0})
     if (CGAL::orientation(drop(a, axis), drop(b, axis), drop(c, axis)) != CGAL::COLLINEAR) return axis;
   return 2;   // unreachable: a, b, c span a plane
-}
-
-// No two edges of the ring meet except neighbours at their shared corner.
-bool is_simple(const std::vector<Q2>& q) {
-  const std::size_t n = q.size();
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i + 1; j < n; ++j) {
-      const K::Segment_2 a(q[i], q[(i + 1) % n]), b(q[j], q[(j + 1) % n]);
-      if (j == i + 1 || (i == 0 && j == n - 1)) {
-        const Q2& corner = j == i + 1 ? q[j] : q[0];
-        const Q2& far_i = j == i + 1 ? q[i] : q[1];
-        const Q2& far_j = j == i + 1 ? q[(j + 1) % n] : q[j];
-        if (CGAL::collinear(far_i, corner, far_j) && CGAL::angle(far_i, corner, far_j) == CGAL::ACUTE) return false;
-      } else if (CGAL::do_intersect(a, b)) {
-        return false;
-      }
-    }
-  return true;
 }
 
 // How a simple ring turns in the plane: as it does at its lexicographically
@@ -172,7 +156,7 @@ void facets_of_holed_face(const Scene& scene, const std::vector<std::uint32_t>& 
   for (std::size_t k = 0; k < rings.size(); ++k) {
     std::vector<Q2> q;
     for (const Q3& p : rings[k].p) q.push_back(drop(p, axis));
-    if (!is_simple(q))
+    if (!is_simple_ring(q))
       refuse(scene, f, k == 0 ? "has an outer ring that crosses or touches itself"
                               : "has hole " + std::to_string(k - 1) + ", which crosses or touches itself");
     for (std::size_t i = 0; i < q.size(); ++i) {

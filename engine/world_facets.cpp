@@ -9,6 +9,7 @@
 #include <exception>
 
 #include "engine/holed_faces.h"
+#include "engine/simple_ring.h"
 #include "engine/parallel.h"
 
 namespace vismap::engine {
@@ -81,38 +82,6 @@ bool is_convex(const std::vector<Q2>& q, CGAL::Orientation& turn) {
     last = s;
   }
   return turn != CGAL::COLLINEAR && changes <= 2;
-}
-
-// Simple: no two edges meet, except neighbours at their shared corner, and
-// there only (folding back along the same line overlaps). Exact predicates;
-// edges are swept by x so that only those whose x-ranges overlap are paired.
-bool is_simple(const std::vector<Q2>& q) {
-  const std::size_t n = q.size();
-  auto lo = [&](std::size_t i) { return std::min(q[i].x(), q[(i + 1) % n].x()); };
-  auto hi = [&](std::size_t i) { return std::max(q[i].x(), q[(i + 1) % n].x()); };
-  // Edges i < j: do they meet anywhere but where neighbours must?
-  auto meet = [&](std::size_t i, std::size_t j) {
-    if (j == i + 1 || (i == 0 && j == n - 1)) {
-      // Neighbours: the far end of one must not lie on the other, past their corner.
-      const Q2& corner = j == i + 1 ? q[j] : q[0];
-      const Q2& far_i = j == i + 1 ? q[i] : q[1];
-      const Q2& far_j = j == i + 1 ? q[(j + 1) % n] : q[j];
-      return CGAL::collinear(far_i, corner, far_j) && CGAL::angle(far_i, corner, far_j) == CGAL::ACUTE;
-    }
-    return CGAL::do_intersect(KI::Segment_2(q[i], q[(i + 1) % n]), KI::Segment_2(q[j], q[(j + 1) % n]));
-  };
-  std::vector<std::size_t> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return lo(a) < lo(b); });
-  for (std::size_t a = 0; a < n; ++a) {
-    const std::size_t i = order[a];
-    const double end = hi(i);
-    for (std::size_t b = a + 1; b < n && lo(order[b]) <= end; ++b) {
-      const std::size_t j = order[b];
-      if (meet(std::min(i, j), std::max(i, j))) return false;
-    }
-  }
-  return true;
 }
 
 // Ear clipping with exact predicates. Returns false when no ear is found (a
@@ -239,7 +208,7 @@ void facets_of_faces(const Scene& scene, const std::vector<std::uint32_t>& canon
       const int area_sign = sgn(area2);
       std::vector<std::array<std::size_t, 3>> tris;
       // A boundary that is not simple (crossing or touching itself) is fanned.
-      if (area_sign != 0 && is_simple(q) && ear_clip(q, area_sign > 0 ? CGAL::LEFT_TURN : CGAL::RIGHT_TURN, tris)) {
+      if (area_sign != 0 && is_simple_ring(q) && ear_clip(q, area_sign > 0 ? CGAL::LEFT_TURN : CGAL::RIGHT_TURN, tris)) {
         for (auto& t : tris) out.facets.push_back(triangle_facet(face, ids, n, t[0], t[1], t[2]));
         continue;
       }
@@ -256,6 +225,36 @@ void facets_of_faces(const Scene& scene, const std::vector<std::uint32_t>& canon
 }
 
 }  // namespace
+
+bool is_simple_ring(const std::vector<CGAL::Epick::Point_2>& q) {
+  const std::size_t n = q.size();
+  auto lo = [&](std::size_t i) { return std::min(q[i].x(), q[(i + 1) % n].x()); };
+  auto hi = [&](std::size_t i) { return std::max(q[i].x(), q[(i + 1) % n].x()); };
+  // Edges i < j: do they meet anywhere but where neighbours must?
+  auto meet = [&](std::size_t i, std::size_t j) {
+    if (j == i + 1 || (i == 0 && j == n - 1)) {
+      // Neighbours: the far end of one must not lie on the other, past their corner.
+      const Q2& corner = j == i + 1 ? q[j] : q[0];
+      const Q2& far_i = j == i + 1 ? q[i] : q[1];
+      const Q2& far_j = j == i + 1 ? q[(j + 1) % n] : q[j];
+      return CGAL::collinear(far_i, corner, far_j) && CGAL::angle(far_i, corner, far_j) == CGAL::ACUTE;
+    }
+    return CGAL::do_intersect(KI::Segment_2(q[i], q[(i + 1) % n]), KI::Segment_2(q[j], q[(j + 1) % n]));
+  };
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return lo(a) < lo(b); });
+  for (std::size_t a = 0; a < n; ++a) {
+    const std::size_t i = order[a];
+    const double end = hi(i);
+    for (std::size_t b = a + 1; b < n && lo(order[b]) <= end; ++b) {
+      const std::size_t j = order[b];
+      if (meet(std::min(i, j), std::max(i, j))) return false;
+    }
+  }
+  return true;
+}
+
 
 WorldFacets make_world_facets(const Scene& scene, int threads) {
   const std::vector<std::uint32_t> canon = canonical_vertex_ids(scene);
