@@ -579,10 +579,10 @@ bool one_side_in_world(const Facet& F, const Facet& G, const std::vector<Vec3>& 
   return on_one_side(F, G, [&](std::size_t k) { return world::orientation(o, a, b, vertex_at(world, F.id[k])); });
 }
 
-// Whether triangle F (of a planar polygon) has a diagonal in G's plane: then,
-// though on one side of it, the polygon may cross it there (meets_plane).
+// Whether triangle F (of a simple planar polygon) has a diagonal in G's plane:
+// then, though on one side of it, the polygon may cross it there (meets_plane).
 bool along_diagonal_in_world(const Facet& F, const Facet& G, const std::vector<Vec3>& world) {
-  if (!F.diagonals || !F.planar) return false;
+  if (!F.diagonals || !F.split) return false;
   const Vec3 &o = vertex_at(world, G.id[0]), &a = vertex_at(world, G.id[1]), &b = vertex_at(world, G.id[2]);
   auto on_plane = [&](std::size_t k) {
     return G.has_vertex(F.id[k]) || world::orientation(o, a, b, vertex_at(world, F.id[k])) == 0;
@@ -626,8 +626,8 @@ bool apart_in_world(const Facet& A, const Facet& B, const std::vector<Vec3>& wor
 
 // How facet F meets the plane of facet G (side(k): the sign of F's corner k):
 // Cross, corners strictly on both sides; AlongDiagonal, on the positive side and
-// touching the plane along a diagonal of F's planar polygon (`diagonal`: its
-// index): the polygon goes on past it to the negative side, so it crosses the
+// touching the plane along a diagonal of the simple planar polygon F splits
+// (`diagonal`: its index): the polygon goes on past it to the negative side, so it crosses the
 // plane there (the facet across the diagonal, on the negative side, reports
 // nothing, so the crossing is found once); otherwise Apart (Newell's tests 3
 // and 4: on one side, touching or not).
@@ -635,7 +635,7 @@ enum class Meets { Apart, Cross, AlongDiagonal };
 template <class Side>
 Meets meets_plane(const Facet& F, const Facet& G, Side&& side, std::size_t& diagonal) {
   if (!on_one_side(F, G, side)) return Meets::Cross;
-  if (!F.diagonals || !F.planar) return Meets::Apart;   // (a fan's fold is no crossing: the face has no one plane)
+  if (!F.diagonals || !F.split) return Meets::Apart;   // (a fan's pieces need not lie on either side of a diagonal)
   const std::size_t n = F.id.size();   // (a facet with diagonals is a triangle, cut or not: n <= 4)
   int sign[8];
   bool positive = false;
@@ -719,7 +719,7 @@ bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3
 
 Curve crossing_curve(const Facet& A, const Facet& B, int fa, int fb, const P2& p, const P2& q, std::deque<P3>& ends) {
   P3 s(p, A.depth_at(p)), t(q, A.depth_at(q));
-  if ((A.diagonals && A.planar) || (B.diagonals && B.planar))
+  if ((A.diagonals && A.split) || (B.diagonals && B.split))
     for (const P3* e : {&s, &t}) {
       to_mpq(e->x);
       to_mpq(e->y);

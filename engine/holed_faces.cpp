@@ -185,7 +185,7 @@ void facets_of_holed_face(const Scene& scene, const std::vector<std::uint32_t>& 
     if (fh->info() != 1) continue;
     int order[3] = {0, 1, 2};
     if (reverse) std::swap(order[1], order[2]);
-    WorldFacet t{face, true, {}, {}};
+    WorldFacet t{face, true, true, {}, {}};
     for (int k = 0; k < 3; ++k) {
       const int i = order[k], j = order[(k + 1) % 3];
       t.v.push_back(fh->vertex(i)->info());

@@ -129,7 +129,7 @@ std::array<std::pair<FT, FT>, 2> chord(const Points& v, const Line& f) {
 }
 
 // How facet F meets G's plane: kCrosses (vertices strictly on both sides), the
-// index k of a diagonal of F's planar polygon along which F, behind G's plane,
+// index k of a diagonal of the simple planar polygon F splits along which F, behind G's plane,
 // touches it (the polygon goes on past it to the front: it crosses G's plane
 // there, and the facet across the diagonal, in front, reports nothing, so the
 // crossing is found once), or kApart.
@@ -137,7 +137,7 @@ constexpr int kCrosses = -2, kApart = -1;
 int meets_plane(const Facet& F, const Facet& G) {
   const int sides = sides_of_plane(F.v, {}, -1, G);
   if (sides == kBoth) return kCrosses;
-  if (!F.diagonals || !F.planar || sides != kBehind) return kApart;   // (a fan's fold is no crossing)
+  if (!F.diagonals || !F.split || sides != kBehind) return kApart;   // (a fan's pieces need not lie on either side)
   const std::size_t n = F.v.size();   // (a facet with diagonals is a triangle, cut or not: n <= 4)
   auto on_plane = [&](std::size_t k) { return is_vertex_of(F.v[k], G) || plane_side(F.v[k], G) == CGAL::ZERO; };
   for (std::size_t k = 0; k < n; ++k)

@@ -497,6 +497,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     const WorldFacet& w = wf.facets[fi];
     f.face = w.face;
     f.planar = w.planar;
+    f.split = w.split;
     const std::size_t n = w.v.size();
     // (A diagonal keeps its role on both sides of a cut.)
     auto mark_diagonal = [&](std::size_t k) {

@@ -72,9 +72,9 @@ struct Facet {
   bool planar = true;            // false: a fan piece of a non-planar polygon
   // Bit k: edge v[k] -> v[k+1] lies on a diagonal inside the polygon (a
   // triangulation's or a fan's edge, EdgeRole::Internal; such facets are
-  // triangles, at most four corners after the near-plane cut). The polygon goes
-  // on past it (in its plane where `planar`).
+  // triangles, at most four corners after the near-plane cut).
   std::uint8_t diagonals = 0;
+  bool split = false;            // WorldFacet::split: across each diagonal, the polygon goes on in its plane
   bool on_diagonal(std::size_t k) const { return k < 8 && ((diagonals >> k) & 1u); }
   double zlo = 0, zhi = 0;       // contains the exact depths over the facet (of its vertices)
   Corners v;                     // convex polygon, screen space, input order

@@ -122,7 +122,7 @@ WorldFacet triangle_facet(int face, const std::vector<std::uint32_t>& ids, std::
   auto role = [n](std::size_t i, std::size_t j) {
     return (j == (i + 1) % n) ? EdgeRole::Boundary : EdgeRole::Internal;
   };
-  return WorldFacet{face, true, {ids[a], ids[b], ids[c]}, {role(a, b), role(b, c), role(c, a)}};
+  return WorldFacet{face, true, false, {ids[a], ids[b], ids[c]}, {role(a, b), role(b, c), role(c, a)}};
 }
 
 }  // namespace
@@ -194,7 +194,7 @@ void facets_of_faces(const Scene& scene, const std::vector<std::uint32_t>& canon
       for (std::size_t k = 0; k < n; ++k) q[k] = drop_axis(p[k], axis);
       CGAL::Orientation turn;
       if (is_convex(q, turn)) {
-        out.facets.push_back(WorldFacet{face, true, SmallVec<std::uint32_t, 4>(ids.begin(), ids.end()),
+        out.facets.push_back(WorldFacet{face, true, false, SmallVec<std::uint32_t, 4>(ids.begin(), ids.end()),
                                         SmallVec<EdgeRole, 8>(n, EdgeRole::Boundary)});
         continue;
       }
@@ -209,7 +209,10 @@ void facets_of_faces(const Scene& scene, const std::vector<std::uint32_t>& canon
       std::vector<std::array<std::size_t, 3>> tris;
       // A boundary that is not simple (crossing or touching itself) is fanned.
       if (area_sign != 0 && is_simple_ring(q) && ear_clip(q, area_sign > 0 ? CGAL::LEFT_TURN : CGAL::RIGHT_TURN, tris)) {
-        for (auto& t : tris) out.facets.push_back(triangle_facet(face, ids, n, t[0], t[1], t[2]));
+        for (auto& t : tris) {
+          out.facets.push_back(triangle_facet(face, ids, n, t[0], t[1], t[2]));
+          out.facets.back().split = true;
+        }
         continue;
       }
     } else {

@@ -22,6 +22,10 @@ enum class EdgeRole : std::uint8_t {
 struct WorldFacet {
   int face = -1;                        // input face index
   bool planar = true;                   // false: a fan piece of a non-planar polygon
+  // A triangle of a simple planar polygon's triangulation (ear clipping, or a
+  // face with holes), not a fan's: across each of its diagonals the polygon goes
+  // on, in its plane, on the other side.
+  bool split = false;
   SmallVec<std::uint32_t, 4> v;         // input vertex ids, in the polygon's order
   SmallVec<EdgeRole, 8> role;           // role[i]: edge v[i] -> v[i+1]
 };
