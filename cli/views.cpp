@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "cli/camera_options.h"
+
 namespace vismap::cli {
 namespace {
 
@@ -19,31 +21,6 @@ std::string number(double v) {
 }
 
 std::string vec(const Vec3& v) { return number(v.x) + "," + number(v.y) + "," + number(v.z); }
-
-// A finite number, all of `text`; false otherwise.
-bool parse_number(const std::string& text, double& out) {
-  std::size_t used = 0;
-  try {
-    out = std::stod(text, &used);
-  } catch (const std::exception&) {
-    return false;
-  }
-  return used == text.size() && std::isfinite(out);
-}
-
-bool parse_vec(const std::string& text, Vec3& out) {
-  double v[3];
-  std::size_t start = 0;
-  for (int i = 0; i < 3; ++i) {
-    const std::size_t comma = i < 2 ? text.find(',', start) : std::string::npos;
-    if (i < 2 && comma == std::string::npos) return false;
-    if (!parse_number(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start), v[i]))
-      return false;
-    start = comma + 1;
-  }
-  out = {v[0], v[1], v[2]};
-  return true;
-}
 
 // cos and sin of k/n of a turn: exact at the quarter turns (so that orbit:4
 // looks along the axes' planes exactly), else the library's.
@@ -59,12 +36,16 @@ std::pair<double, double> turn(int k, int n) {
 
 std::vector<NamedView> orbit(const std::string& args) {
   const std::size_t comma = args.find(',');
+  const std::string refusal = "orbit:N[,ELEVATION] takes a whole number of views N from 1 to 100000 and an "
+                              "elevation strictly between -90 and 90 degrees, got 'orbit:" + args + "'";
   double n = 0, elevation = 30;
-  if (!parse_number(args.substr(0, comma), n) || n < 1 || n > 100000 || n != std::floor(n) ||
-      (comma != std::string::npos && !parse_number(args.substr(comma + 1), elevation)) || elevation <= -90 ||
-      elevation >= 90)
-    throw std::invalid_argument("orbit:N[,ELEVATION] takes a whole number of views N from 1 to 100000 and an "
-                                "elevation strictly between -90 and 90 degrees, got 'orbit:" + args + "'");
+  try {
+    n = parse_number("orbit", args.substr(0, comma));
+    if (comma != std::string::npos) elevation = parse_number("orbit", args.substr(comma + 1));
+  } catch (const std::invalid_argument&) {
+    throw std::invalid_argument(refusal);
+  }
+  if (n < 1 || n > 100000 || n != std::floor(n) || elevation <= -90 || elevation >= 90) throw std::invalid_argument(refusal);
   std::vector<NamedView> out;
   const double e = elevation * std::numbers::pi / 180;
   const double ce = elevation == 0 ? 1 : std::cos(e), se = elevation == 0 ? 0 : std::sin(e);
@@ -85,16 +66,10 @@ NamedView camera_line(const std::string& line, const std::string& where) {
   NamedView v;
   while (words >> opt) {
     if (!(words >> value)) throw InputError(where + ": " + opt + " needs a value");
-    Vec3 p;
-    double d;
-    if (opt == "--fov") {
-      if (!parse_number(value, d)) throw InputError(where + ": --fov expects a finite number, got '" + value + "'");
-      v.camera.fov_deg = d;
-    } else if (opt == "--dir" || opt == "--eye" || opt == "--target" || opt == "--up") {
-      if (!parse_vec(value, p)) throw InputError(where + ": " + opt + " expects X,Y,Z (finite numbers), got '" + value + "'");
-      (opt == "--dir" ? v.camera.dir : opt == "--eye" ? v.camera.eye : opt == "--target" ? v.camera.target : v.camera.up) = p;
-    } else {
-      throw InputError(where + ": expected a camera option (--dir, --eye, --target, --fov, --up), found '" + opt + "'");
+    try {
+      set_camera_option(v.camera, opt, value);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(where + ": " + e.what());
     }
     v.options += (v.options.empty() ? "" : " ") + opt + " " + value;
   }

@@ -16,6 +16,7 @@
 #include "arrangements/json_writer.h"
 #include "arrangements/sheet.h"
 #include "arrangements/svg_writer.h"
+#include "cli/camera_options.h"
 #include "cli/views.h"
 #include "engine/camera.h"
 #include "engine/scene.h"
@@ -103,24 +104,20 @@ struct Usage : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-double parse_double(const std::string& opt, const std::string& s) {
-  char* end = nullptr;
-  double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || *end != '\0' || !std::isfinite(v)) throw Usage(opt + " expects a finite number, got '" + s + "'");
-  return v;
-}
-
-vismap::Vec3 parse_vec(const std::string& opt, const std::string& s) {
-  std::vector<double> v;
-  std::size_t start = 0;
-  while (true) {
-    std::size_t comma = s.find(',', start);
-    v.push_back(parse_double(opt, s.substr(start, comma - start)));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
+// The shared parsers' refusals as usage errors.
+template <class Parse>
+auto as_usage(Parse&& parse) {
+  try {
+    return parse();
+  } catch (const std::invalid_argument& e) {
+    throw Usage(e.what());
   }
-  if (v.size() != 3) throw Usage(opt + " expects X,Y,Z, got '" + s + "'");
-  return {v[0], v[1], v[2]};
+}
+double parse_double(const std::string& opt, const std::string& s) {
+  return as_usage([&] { return vismap::cli::parse_number(opt, s); });
+}
+vismap::Vec3 parse_vec(const std::string& opt, const std::string& s) {
+  return as_usage([&] { return vismap::cli::parse_vec3(opt, s); });
 }
 
 // The library's messages name no option; where one is the remedy, the command
@@ -197,11 +194,10 @@ int main(int argc, char** argv) {
         shading.light[2] = l.z;
       }
       else if (a == "--no-regions") no_regions = true;
-      else if (a == "--dir") cam.dir = parse_vec(a, value());
-      else if (a == "--eye") cam.eye = parse_vec(a, value());
-      else if (a == "--target") cam.target = parse_vec(a, value());
-      else if (a == "--fov") cam.fov_deg = parse_double(a, value());
-      else if (a == "--up") cam.up = parse_vec(a, value());
+      else if (vismap::cli::is_camera_option(a)) {
+        const std::string& v = value();
+        as_usage([&] { vismap::cli::set_camera_option(cam, a, v); });
+      }
       else if (a == "--views") views_spec = value();
       else if (a == "--crease") {
         eng.crease_deg = parse_double(a, value());

@@ -582,7 +582,7 @@ bool one_side_in_world(const Facet& F, const Facet& G, const std::vector<Vec3>& 
 // Whether triangle F (of a simple planar polygon) has a diagonal in G's plane:
 // then, though on one side of it, the polygon may cross it there (meets_plane).
 bool along_diagonal_in_world(const Facet& F, const Facet& G, const std::vector<Vec3>& world) {
-  if (!F.diagonals || !F.split) return false;
+  if (!F.may_cross_at_diagonal()) return false;
   const Vec3 &o = vertex_at(world, G.id[0]), &a = vertex_at(world, G.id[1]), &b = vertex_at(world, G.id[2]);
   auto on_plane = [&](std::size_t k) {
     return G.has_vertex(F.id[k]) || world::orientation(o, a, b, vertex_at(world, F.id[k])) == 0;
@@ -634,16 +634,18 @@ bool apart_in_world(const Facet& A, const Facet& B, const std::vector<Vec3>& wor
 enum class Meets { Apart, Cross, AlongDiagonal };
 template <class Side>
 Meets meets_plane(const Facet& F, const Facet& G, Side&& side, std::size_t& diagonal) {
-  if (!on_one_side(F, G, side)) return Meets::Cross;
-  if (!F.diagonals || !F.split) return Meets::Apart;   // (a fan's pieces need not lie on either side of a diagonal)
-  const std::size_t n = F.id.size();   // (a facet with diagonals is a triangle, cut or not: n <= 4)
+  // (A fan's pieces need not lie on either side of a diagonal: only Newell's tests.)
+  if (!F.may_cross_at_diagonal()) return on_one_side(F, G, side) ? Meets::Apart : Meets::Cross;
+  const std::size_t n = F.id.size();   // (a triangle, cut or not: n <= 4)
   int sign[8];
-  bool positive = false;
-  for (std::size_t k = 0; k < n && k < 8; ++k) {
+  bool positive = false, negative = false;
+  for (std::size_t k = 0; k < n; ++k) {   // each corner's side once
     sign[k] = G.has_vertex(F.id[k]) ? 0 : side(k);
     positive |= sign[k] > 0;
+    negative |= sign[k] < 0;
   }
-  for (std::size_t k = 0; k < n && k < 8 && positive; ++k)
+  if (positive && negative) return Meets::Cross;
+  for (std::size_t k = 0; k < n && positive; ++k)
     if (F.on_diagonal(k) && sign[k] == 0 && sign[(k + 1) % n] == 0) {
       diagonal = k;
       return Meets::AlongDiagonal;
@@ -719,7 +721,7 @@ bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3
 
 Curve crossing_curve(const Facet& A, const Facet& B, int fa, int fb, const P2& p, const P2& q, std::deque<P3>& ends) {
   P3 s(p, A.depth_at(p)), t(q, A.depth_at(q));
-  if ((A.diagonals && A.split) || (B.diagonals && B.split))
+  if (A.may_cross_at_diagonal() || B.may_cross_at_diagonal())
     for (const P3* e : {&s, &t}) {
       to_mpq(e->x);
       to_mpq(e->y);

@@ -65,9 +65,9 @@ CGAL::Sign depth_above(const P3& p, const Facet& f, const std::vector<Vec3>* wor
 bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3>* world, P2& p, P2& q);
 
 // The curve of the crossing p-q of facets A and B (fa, fb), its depths A's.
-// Where A or B touches the other's plane along a diagonal, the line lies on
-// facet edges and predicates on its ends are exactly degenerate: their exact
-// values are computed here, before the threads share them. (A lazy number's
+// Where A or B may cross at a diagonal (Facet::may_cross_at_diagonal), the line
+// may lie on facet edges, and predicates on its ends be exactly degenerate:
+// their exact values are computed here, before the threads share them. (A lazy number's
 // interval narrows once its exact value is known, so which thread computed it
 // first would change which later predicates the filter settles, and the counts
 // in the JSON must not depend on the thread count.)

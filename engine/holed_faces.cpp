@@ -9,15 +9,13 @@
 #include <deque>
 #include <string>
 
-#include "engine/simple_ring.h"
+#include "engine/input_polygon.h"
 
 namespace vismap::engine {
 namespace {
 
 // Inputs are doubles and nothing is constructed: Epick's predicates are exact.
 using K = CGAL::Epick;
-using Q3 = K::Point_3;
-using Q2 = K::Point_2;
 using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, K>;   // canonical vertex id
 using Fb = CGAL::Triangulation_face_base_with_info_2<int, K, CGAL::Constrained_triangulation_face_base_2<K>>;
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
@@ -37,48 +35,15 @@ struct Ring {
 
 Ring ring_of(const Scene& scene, const std::vector<std::uint32_t>& canon, const IndexRing& r) {
   Ring out;
-  for (std::uint32_t i : r) {
-    i = canon[i];
-    const Vec3& v = scene.vertices[i];
-    const Q3 x(v.x, v.y, v.z);
-    if (!out.p.empty() && out.p.back() == x) continue;
-    out.ids.push_back(i);
-    out.p.push_back(x);
-  }
-  while (out.p.size() > 1 && out.p.back() == out.p.front()) {
-    out.p.pop_back();
-    out.ids.pop_back();
-  }
+  distinct_corners(scene, canon, r, out.ids, out.p);
   return out;
-}
-
-// Three corners of `r` that span a plane (positions), or false when every
-// corner lies on one line.
-bool spanning(const Ring& r, std::size_t& i1, std::size_t& i2) {
-  if (r.p.size() < 3) return false;
-  for (i1 = 1; i1 < r.p.size() && r.p[i1] == r.p[0]; ++i1) {}
-  for (i2 = i1 + 1; i2 < r.p.size(); ++i2)
-    if (!CGAL::collinear(r.p[0], r.p[i1], r.p[i2])) return true;
-  return false;
-}
-
-// The coordinate plane to drop to: the first axis (x, y, z) along which the
-// plane's normal has a non-zero component, decided exactly by the orientation
-// of the three spanning corners' images.
-Q2 drop(const Q3& p, int axis) {
-  return axis == 0 ? Q2(p.y(), p.z()) : axis == 1 ? Q2(p.z(), p.x()) : Q2(p.x(), p.y());
-}
-int projection_axis(const Q3& a, const Q3& b, const Q3& c) {
-  for (int axis : {2, 1, 0})
-    if (CGAL::orientation(drop(a, axis), drop(b, axis), drop(c, axis)) != CGAL::COLLINEAR) return axis;
-  return 2;   // unreachable: a, b, c span a plane
 }
 
 // How a simple ring turns in the plane: as it does at its lexicographically
 // smallest corner (a convex corner, where the turn is never straight).
 CGAL::Orientation turn(const Ring& r, int axis) {
   std::vector<Q2> q;
-  for (const Q3& p : r.p) q.push_back(drop(p, axis));
+  for (const Q3& p : r.p) q.push_back(drop_axis(p, axis));
   const std::size_t n = q.size();
   const std::size_t m = static_cast<std::size_t>(std::min_element(q.begin(), q.end()) - q.begin());
   return CGAL::orientation(q[(m + n - 1) % n], q[m], q[(m + 1) % n]);
@@ -134,7 +99,7 @@ void facets_of_holed_face(const Scene& scene, const std::vector<std::uint32_t>& 
                           WorldFacets& out) {
   std::vector<Ring> rings{ring_of(scene, canon, scene.faces[f])};
   std::size_t i1, i2;
-  if (!spanning(rings[0], i1, i2)) {
+  if (!find_plane(rings[0].p, i1, i2)) {
     ++out.degenerate;   // the outer ring has no area: dropped, as any degenerate polygon
     return;
   }
@@ -143,19 +108,19 @@ void facets_of_holed_face(const Scene& scene, const std::vector<std::uint32_t>& 
   for (std::size_t h = 0; h < holes.size(); ++h) {
     rings.push_back(ring_of(scene, canon, holes[h]));
     std::size_t j1, j2;
-    if (!spanning(rings.back(), j1, j2)) refuse(scene, f, "has hole " + std::to_string(h) + " with no area");
+    if (!find_plane(rings.back().p, j1, j2)) refuse(scene, f, "has hole " + std::to_string(h) + " with no area");
   }
   for (const Ring& r : rings)
     for (const Q3& p : r.p)
       if (CGAL::orientation(a, b, c, p) != CGAL::COPLANAR)
         refuse(scene, f, "has holes, so it must be planar, but its corners do not lie in one plane");
 
-  const int axis = projection_axis(a, b, c);
+  const int axis = dominant_axis(a, b, c);
   CT ct;
   std::vector<std::vector<CT::Vertex_handle>> handles(rings.size());
   for (std::size_t k = 0; k < rings.size(); ++k) {
     std::vector<Q2> q;
-    for (const Q3& p : rings[k].p) q.push_back(drop(p, axis));
+    for (const Q3& p : rings[k].p) q.push_back(drop_axis(p, axis));
     if (!is_simple_ring(q))
       refuse(scene, f, k == 0 ? "has an outer ring that crosses or touches itself"
                               : "has hole " + std::to_string(k - 1) + ", which crosses or touches itself");

@@ -135,13 +135,18 @@ std::array<std::pair<FT, FT>, 2> chord(const Points& v, const Line& f) {
 // crossing is found once), or kApart.
 constexpr int kCrosses = -2, kApart = -1;
 int meets_plane(const Facet& F, const Facet& G) {
-  const int sides = sides_of_plane(F.v, {}, -1, G);
+  // (A fan's pieces need not lie on either side of a diagonal: only Newell's tests.)
+  if (!F.may_cross_at_diagonal()) return sides_of_plane(F.v, {}, -1, G) == kBoth ? kCrosses : kApart;
+  const std::size_t n = F.v.size();   // (a triangle, cut or not: n <= 4)
+  CGAL::Sign side[8];
+  int sides = 0;
+  for (std::size_t k = 0; k < n; ++k) {   // each corner's side once
+    side[k] = is_vertex_of(F.v[k], G) ? CGAL::ZERO : plane_side(F.v[k], G);
+    sides |= side[k] == CGAL::POSITIVE ? kPos : side[k] == CGAL::NEGATIVE ? kNeg : 0;
+  }
   if (sides == kBoth) return kCrosses;
-  if (!F.diagonals || !F.split || sides != kBehind) return kApart;   // (a fan's pieces need not lie on either side)
-  const std::size_t n = F.v.size();   // (a facet with diagonals is a triangle, cut or not: n <= 4)
-  auto on_plane = [&](std::size_t k) { return is_vertex_of(F.v[k], G) || plane_side(F.v[k], G) == CGAL::ZERO; };
-  for (std::size_t k = 0; k < n; ++k)
-    if (F.on_diagonal(k) && on_plane(k) && on_plane((k + 1) % n)) return static_cast<int>(k);
+  for (std::size_t k = 0; k < n && sides == kBehind; ++k)
+    if (F.on_diagonal(k) && side[k] == CGAL::ZERO && side[(k + 1) % n] == CGAL::ZERO) return static_cast<int>(k);
   return kApart;
 }
 

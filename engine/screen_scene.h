@@ -76,6 +76,9 @@ struct Facet {
   std::uint8_t diagonals = 0;
   bool split = false;            // WorldFacet::split: across each diagonal, the polygon goes on in its plane
   bool on_diagonal(std::size_t k) const { return k < 8 && ((diagonals >> k) & 1u); }
+  // A triangle of a simple planar polygon with a diagonal: touching another
+  // facet's plane along it, the polygon may cross that plane there.
+  bool may_cross_at_diagonal() const { return split && diagonals != 0; }
   double zlo = 0, zhi = 0;       // contains the exact depths over the facet (of its vertices)
   Corners v;                     // convex polygon, screen space, input order
   SmallVec<VertexId, 4> id;      // id[k]: v[k]'s canonical vertex id, or -1 where the near

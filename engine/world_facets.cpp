@@ -9,7 +9,7 @@
 #include <exception>
 
 #include "engine/holed_faces.h"
-#include "engine/simple_ring.h"
+#include "engine/input_polygon.h"
 #include "engine/parallel.h"
 
 namespace vismap::engine {
@@ -17,44 +17,6 @@ namespace {
 
 // Inputs are doubles, so Epick's filtered predicates are exact on them.
 using KI = CGAL::Epick;
-using Q3 = KI::Point_3;
-using Q2 = KI::Point_2;
-
-Q3 q3(const Vec3& p) { return Q3(p.x, p.y, p.z); }
-
-// Finds i1, the first vertex distinct from p[0], and i2, the first after it that is
-// not collinear with both; false when all vertices are collinear.
-bool find_plane(const std::vector<Q3>& p, std::size_t& i1, std::size_t& i2) {
-  for (i1 = 1; i1 < p.size() && p[i1] == p[0]; ++i1) {}
-  for (i2 = i1 + 1; i2 < p.size(); ++i2)
-    if (!CGAL::collinear(p[0], p[i1], p[i2])) return true;
-  return false;
-}
-
-// Projection to the coordinate plane that keeps the polygon's area: drop the axis
-// along which the normal is largest (exact: compare the normal's components).
-int dominant_axis(const Q3& a, const Q3& b, const Q3& c) {
-  // Orientation of the projections onto the yz, zx, xy planes are the signs of the
-  // normal's components; pick the first axis whose projection is not degenerate,
-  // preferring the one with the largest magnitude in doubles (any non-zero works).
-  double nx = (b.y() - a.y()) * (c.z() - a.z()) - (b.z() - a.z()) * (c.y() - a.y());
-  double ny = (b.z() - a.z()) * (c.x() - a.x()) - (b.x() - a.x()) * (c.z() - a.z());
-  double nz = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
-  int order[3] = {0, 1, 2};
-  double mag[3] = {std::abs(nx), std::abs(ny), std::abs(nz)};
-  std::sort(order, order + 3, [&](int i, int j) { return mag[i] > mag[j]; });
-  for (int axis : order) {
-    auto drop = [axis](const Q3& p) {
-      return axis == 0 ? Q2(p.y(), p.z()) : axis == 1 ? Q2(p.z(), p.x()) : Q2(p.x(), p.y());
-    };
-    if (CGAL::orientation(drop(a), drop(b), drop(c)) != CGAL::COLLINEAR) return axis;
-  }
-  return 2;  // unreachable for non-collinear a, b, c
-}
-
-Q2 drop_axis(const Q3& p, int axis) {
-  return axis == 0 ? Q2(p.y(), p.z()) : axis == 1 ? Q2(p.z(), p.x()) : Q2(p.x(), p.y());
-}
 
 // Convex and simple: every turn has the same sign (straight turns allowed) and the
 // boundary winds once (edge directions change x-sign at most twice).
@@ -169,19 +131,9 @@ void facets_of_faces(const Scene& scene, const std::vector<std::uint32_t>& canon
       facets_of_holed_face(scene, canon, f, out);
       continue;
     }
-    // Drop consecutive repeats (cyclically): they are the same vertex.
-    ids.clear();
-    p.clear();
-    for (auto i : scene.faces[f]) {
-      i = canon[i];
-      Q3 x = q3(scene.vertices[i]);
-      if (!p.empty() && p.back() == x) continue;
-      ids.push_back(i);
-      p.push_back(x);
-    }
-    while (p.size() > 1 && p.back() == p.front()) { p.pop_back(); ids.pop_back(); }
+    distinct_corners(scene, canon, scene.faces[f], ids, p);
     std::size_t i1, i2;
-    if (p.size() < 3 || !find_plane(p, i1, i2)) { ++out.degenerate; continue; }
+    if (!find_plane(p, i1, i2)) { ++out.degenerate; continue; }
     const int face = static_cast<int>(f);
     bool planar = true;
     // (The three points that span the plane lie in it: no exact zero to compute.)
@@ -229,7 +181,49 @@ void facets_of_faces(const Scene& scene, const std::vector<std::uint32_t>& canon
 
 }  // namespace
 
-bool is_simple_ring(const std::vector<CGAL::Epick::Point_2>& q) {
+void distinct_corners(const Scene& scene, const std::vector<std::uint32_t>& canon, const IndexRing& ring,
+                      std::vector<std::uint32_t>& ids, std::vector<Q3>& p) {
+  ids.clear();
+  p.clear();
+  for (std::uint32_t i : ring) {
+    i = canon[i];
+    const Vec3& v = scene.vertices[i];
+    const Q3 x(v.x, v.y, v.z);
+    if (!p.empty() && p.back() == x) continue;
+    ids.push_back(i);
+    p.push_back(x);
+  }
+  while (p.size() > 1 && p.back() == p.front()) { p.pop_back(); ids.pop_back(); }
+}
+
+bool find_plane(const std::vector<Q3>& p, std::size_t& i1, std::size_t& i2) {
+  if (p.size() < 3) return false;
+  for (i1 = 1; i1 < p.size() && p[i1] == p[0]; ++i1) {}
+  for (i2 = i1 + 1; i2 < p.size(); ++i2)
+    if (!CGAL::collinear(p[0], p[i1], p[i2])) return true;
+  return false;
+}
+
+int dominant_axis(const Q3& a, const Q3& b, const Q3& c) {
+  // Orientation of the projections onto the yz, zx, xy planes are the signs of the
+  // normal's components; pick the first axis whose projection is not degenerate,
+  // preferring the one with the largest magnitude in doubles (any non-zero works).
+  double nx = (b.y() - a.y()) * (c.z() - a.z()) - (b.z() - a.z()) * (c.y() - a.y());
+  double ny = (b.z() - a.z()) * (c.x() - a.x()) - (b.x() - a.x()) * (c.z() - a.z());
+  double nz = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+  int order[3] = {0, 1, 2};
+  double mag[3] = {std::abs(nx), std::abs(ny), std::abs(nz)};
+  std::sort(order, order + 3, [&](int i, int j) { return mag[i] > mag[j]; });
+  for (int axis : order)
+    if (CGAL::orientation(drop_axis(a, axis), drop_axis(b, axis), drop_axis(c, axis)) != CGAL::COLLINEAR) return axis;
+  return 2;  // unreachable for non-collinear a, b, c
+}
+
+Q2 drop_axis(const Q3& p, int axis) {
+  return axis == 0 ? Q2(p.y(), p.z()) : axis == 1 ? Q2(p.z(), p.x()) : Q2(p.x(), p.y());
+}
+
+bool is_simple_ring(const std::vector<Q2>& q) {
   const std::size_t n = q.size();
   auto lo = [&](std::size_t i) { return std::min(q[i].x(), q[(i + 1) % n].x()); };
   auto hi = [&](std::size_t i) { return std::max(q[i].x(), q[(i + 1) % n].x()); };

@@ -126,18 +126,8 @@ const std::vector<std::uint32_t>& BoxGrid::near(const P2& q) const {
 }
 
 Where locate(const P2& q, const std::vector<P2>& ring) {
-  bool inside = false;
-  for (std::size_t i = 0, n = ring.size(); i < n; ++i) {
-    const P2& a = ring[i];
-    const P2& b = ring[(i + 1) % n];
-    if (on_segment(q, a, b)) return Where::Boundary;
-    // Half-open rule on y: each crossing of the rightward ray is counted once.
-    if ((a.y > q.y) != (b.y > q.y)) {
-      int o = orient(a, b, q);
-      if (b.y > a.y ? o > 0 : o < 0) inside = !inside;
-    }
-  }
-  return inside ? Where::Inside : Where::Outside;
+  const std::size_t n = ring.size();
+  return locate_edges(q, ring, [n](std::size_t i) { return i + 1 == n ? 0 : i + 1; });
 }
 
 Meet meet(const P2& a, const P2& b, const P2& c, const P2& d, P2* point) {

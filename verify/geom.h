@@ -61,6 +61,24 @@ class BoxGrid {
 enum class Where { Outside, Inside, Boundary };
 Where locate(const P2& q, const std::vector<P2>& ring);
 
+// The same against the edges pts[i] -> pts[next(i)]: several rings one after
+// another in pts (a face with holes), next(i) the corner after i in its ring.
+template <class Next>
+Where locate_edges(const P2& q, const std::vector<P2>& pts, Next&& next) {
+  bool inside = false;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const P2& a = pts[i];
+    const P2& b = pts[next(i)];
+    if (on_segment(q, a, b)) return Where::Boundary;
+    // Half-open rule on y: each crossing of the rightward ray is counted once.
+    if ((a.y > q.y) != (b.y > q.y)) {
+      const int o = orient(a, b, q);
+      if (b.y > a.y ? o > 0 : o < 0) inside = !inside;
+    }
+  }
+  return inside ? Where::Inside : Where::Outside;
+}
+
 // How two closed segments (each of positive length) meet.
 enum class Meet { None, Point, Overlap };
 Meet meet(const P2& a, const P2& b, const P2& c, const P2& d, P2* point = nullptr);

@@ -291,18 +291,7 @@ int Piece::depth_cmp(const P2& q, const mpq_class& d) const {
 }
 
 Where locate(const P2& q, const Piece& p) {
-  bool inside = false;
-  for (std::size_t i = 0, n = p.xy.size(); i < n; ++i) {
-    const P2& a = p.xy[i];
-    const P2& b = p.xy[p.next(i)];
-    if (on_segment(q, a, b)) return Where::Boundary;
-    // Half-open rule on y, as locate() on one ring: each crossing counted once.
-    if ((a.y > q.y) != (b.y > q.y)) {
-      int o = orient(a, b, q);
-      if (b.y > a.y ? o > 0 : o < 0) inside = !inside;
-    }
-  }
-  return inside ? Where::Inside : Where::Outside;
+  return locate_edges(q, p.xy, [&p](std::size_t i) { return p.next(i); });
 }
 
 bool is_crease(const std::array<mpq_class, 3>& n1, const std::array<mpq_class, 3>& n2, const mpq_class& c) {
