@@ -112,6 +112,99 @@ bool cells_from_intervals(const Vec3& p, const Vec3& q, int k, const Cells& cell
   return true;
 }
 
+
+// Facet edges grouped by their (unordered) vertex pair: group g's edges are
+// order[start[g] .. start[g+1]), in facet order; groups in order of (lower
+// vertex, higher vertex).
+struct EdgeGroups {
+  std::vector<std::uint32_t> order;
+  std::vector<std::size_t> start;
+};
+
+EdgeGroups group_by_vertex_pair(const std::vector<Edge>& edges, std::size_t nvertices, int threads) {
+  auto lower = [](const Edge& e) { return std::min(e.p, e.q); };
+  auto higher = [](const Edge& e) { return std::max(e.p, e.q); };
+  // Counting sort by the lower vertex, stable: each part of the edges counts its
+  // own; part k's edges of vertex v go after those of parts before k.
+  const int parts = std::max(1, std::min<int>(threads, static_cast<int>(edges.size() / 65536)));
+  auto part = [&](int k) { return edges.size() * static_cast<std::size_t>(k) / static_cast<std::size_t>(parts); };
+  auto vertices = [&](int k) { return nvertices * static_cast<std::size_t>(k) / static_cast<std::size_t>(parts); };
+  std::vector<std::vector<std::uint32_t>> count(static_cast<std::size_t>(parts));
+  parallel_for(parts, threads, [&](int k) {
+    std::vector<std::uint32_t> c(nvertices, 0);
+    for (std::size_t i = part(k); i < part(k + 1); ++i) ++c[lower(edges[i])];
+    count[static_cast<std::size_t>(k)] = std::move(c);
+  });
+  std::vector<std::uint32_t> first(nvertices + 1, 0);   // vertex v's edges: order[first[v] .. first[v+1])
+  for (std::size_t v = 0; v < nvertices; ++v) {
+    std::uint32_t at = first[v];
+    for (auto& c : count) {   // (c[v] becomes the part's next place)
+      const std::uint32_t n = c[v];
+      c[v] = at;
+      at += n;
+    }
+    first[v + 1] = at;
+  }
+  EdgeGroups g;
+  g.order.resize(edges.size());
+  parallel_for(parts, threads, [&](int k) {
+    std::vector<std::uint32_t>& next = count[static_cast<std::size_t>(k)];
+    for (std::size_t i = part(k); i < part(k + 1); ++i) g.order[next[lower(edges[i])]++] = static_cast<std::uint32_t>(i);
+  });
+  // Each vertex's edges by the higher vertex (stable), and where the groups start;
+  // parts of the vertices in parallel.
+  std::vector<std::vector<std::size_t>> starts(static_cast<std::size_t>(parts));
+  parallel_for(parts, threads, [&](int k) {
+    std::vector<std::size_t> mine;
+    for (std::size_t v = vertices(k); v < vertices(k + 1); ++v) {
+      const auto b = g.order.begin() + first[v], e = g.order.begin() + first[v + 1];
+      auto by_higher = [&](std::uint32_t x, std::uint32_t y) { return higher(edges[x]) < higher(edges[y]); };
+      if (e - b <= 16) {   // (insertion sort: most vertices have a handful of edges)
+        for (auto i = b; i != e; ++i)
+          for (auto j = i; j != b && by_higher(*j, *(j - 1)); --j) std::iter_swap(j, j - 1);
+      } else {
+        std::stable_sort(b, e, by_higher);
+      }
+      for (auto i = b; i != e; ++i)
+        if (i == b || higher(edges[*i]) != higher(edges[*(i - 1)])) mine.push_back(static_cast<std::size_t>(i - g.order.begin()));
+    }
+    starts[static_cast<std::size_t>(k)] = std::move(mine);
+  });
+  std::size_t ngroups = 0;
+  for (const auto& m : starts) ngroups += m.size();
+  g.start.reserve(ngroups + 1);
+  for (const auto& m : starts) g.start.insert(g.start.end(), m.begin(), m.end());
+  g.start.push_back(edges.size());
+  return g;
+}
+
+
+// Sorts items [b, e) by their ranks (distinct), keeping each with its rank.
+template <class Item, class Rank>
+void sort_by_rank(std::vector<Item>& items, std::vector<Rank>& rank, std::size_t b, std::size_t e) {
+  if (e - b <= 16) {   // (most facets: insertion sort)
+    for (std::size_t i = b + 1; i < e; ++i)
+      for (std::size_t j = i; j > b && rank[j] < rank[j - 1]; --j) {
+        std::swap(rank[j], rank[j - 1]);
+        std::swap(items[j], items[j - 1]);
+      }
+    return;
+  }
+  std::vector<std::size_t> by(e - b);
+  for (std::size_t i = 0; i < by.size(); ++i) by[i] = b + i;
+  std::sort(by.begin(), by.end(), [&](std::size_t x, std::size_t y) { return rank[x] < rank[y]; });
+  std::vector<Item> moved;
+  std::vector<Rank> ranks;
+  moved.reserve(by.size());
+  ranks.reserve(by.size());
+  for (std::size_t i : by) {
+    moved.push_back(std::move(items[i]));
+    ranks.push_back(rank[i]);
+  }
+  std::move(moved.begin(), moved.end(), items.begin() + static_cast<std::ptrdiff_t>(b));
+  std::copy(ranks.begin(), ranks.end(), rank.begin() + static_cast<std::ptrdiff_t>(b));
+}
+
 }  // namespace
 
 std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, int cell_bits, int threads) {
@@ -140,33 +233,49 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
     return line_key(vertex(lo), vertex(hi), e.axis);
   };
 
-  // Sort by (cells, vertex pair): runs of equal cells are candidate lines. Each
-  // slot carries its edge, so the runs are read in order.
-  struct Slot {
-    std::uint64_t hash, pair;
-    std::uint32_t edge;
-    Edge e;
-  };
-  // Each edge's line cells, in parallel (chunks of edges, each slot its own).
-  std::vector<Slot> slots(edges.size());
-  parallel_chunks(static_cast<int>(edges.size()), 8192, threads, [&](int, Chunk r) {
+  // Edges between the same two vertices (most edges of a mesh, twice each) are
+  // one group: they lie on one line, so their line's cells are found once.
+  // Counting sort by the lower vertex, then by the higher within it; stable, so a
+  // group's edges stay in facet order.
+  const EdgeGroups groups = group_by_vertex_pair(edges, scene.vertices.size(), threads);
+  const std::size_t ngroups = groups.start.size() - 1;
+  auto group_edge = [&](std::size_t g) -> const Edge& { return edges[groups.order[groups.start[g]]]; };
+
+  // Each group's line cells, in parallel.
+  std::vector<std::uint64_t> cells_at(ngroups);
+  parallel_chunks(static_cast<int>(ngroups), 8192, threads, [&](int, Chunk r) {
     CGAL::Protect_FPU_rounding<true> upward;
-    for (auto i = static_cast<std::uint32_t>(r.begin); i < static_cast<std::uint32_t>(r.end); ++i) {
-      const Edge& e = edges[i];
+    for (auto g = static_cast<std::size_t>(r.begin); g < static_cast<std::size_t>(r.end); ++g) {
+      const Edge& e = group_edge(g);
       const std::uint32_t lo = std::min(e.p, e.q), hi = std::max(e.p, e.q);
-      std::uint64_t h;
-      if (!cells_from_intervals(vertex(lo), vertex(hi), e.axis, cells, h)) {
+      if (!cells_from_intervals(vertex(lo), vertex(hi), e.axis, cells, cells_at[g])) {
         CGAL::Protect_FPU_rounding<false> nearest;
-        h = cells_of(exact_key(e), cells);
+        cells_at[g] = cells_of(exact_key(e), cells);
       }
-      slots[i] = Slot{h, std::uint64_t(lo) << 32 | hi, i, e};
     }
   });
+  // Groups sorted by (cells, vertex pair): a run of several groups with equal
+  // cells is a candidate line, handled once, by its first group.
+  struct Slot {
+    std::uint64_t hash;
+    std::uint32_t group;   // (groups are numbered in vertex-pair order)
+  };
+  std::vector<Slot> slots(ngroups);
+  for (std::size_t g = 0; g < ngroups; ++g) slots[g] = Slot{cells_at[g], static_cast<std::uint32_t>(g)};
   engine::parallel_sort(slots.begin(), slots.end(), [](const Slot& x, const Slot& y) {
-    if (x.hash != y.hash) return x.hash < y.hash;
-    if (x.pair != y.pair) return x.pair < y.pair;
-    return x.edge < y.edge;   // (a total order: the same for every thread count)
+    return x.hash != y.hash ? x.hash < y.hash : x.group < y.group;   // (a total order)
   }, threads);
+  constexpr std::uint32_t alone = UINT32_MAX, in_run = UINT32_MAX - 1;
+  std::vector<std::uint32_t> run_at(ngroups, alone);   // a run's first group: where its slots start
+  for (std::size_t lo = 0; lo < ngroups;) {
+    std::size_t hi = lo + 1;
+    while (hi < ngroups && slots[hi].hash == slots[lo].hash) ++hi;
+    if (hi > lo + 1) {
+      run_at[slots[lo].group] = static_cast<std::uint32_t>(lo);
+      for (std::size_t s = lo + 1; s < hi; ++s) run_at[slots[s].group] = in_run;
+    }
+    lo = hi;
+  }
 
   auto sharer = [](const Edge& e) { return Sharer{e.facet, e.edge, e.forward}; };
   auto by_facet = [](const Sharer& x, const Sharer& y) {
@@ -219,74 +328,96 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
     }
   };
 
-  // The pieces of the runs of equal cells that start in slots [from, to).
-  auto pieces_of_runs = [&](std::size_t from, std::size_t to, Scratch& w, std::vector<WorldPiece>& pieces) {
-    for (std::size_t lo = from; lo < to;) {
-      std::size_t hi = lo + 1;
-      bool one_pair = true;
-      for (; hi < slots.size() && slots[hi].hash == slots[lo].hash; ++hi) one_pair &= slots[hi].pair == slots[lo].pair;
-      if (one_pair) {
-        // Alone on its line (with any edges between the same two vertices): one piece.
-        const Edge& e = slots[lo].e;
+  // Where a piece goes among those of its first sharer: by its line's cells,
+  // then its place in the run's sweeps (the order of one pass over the runs).
+  struct Rank {
+    std::uint64_t cells;
+    std::uint32_t seq;
+    bool operator<(const Rank& o) const { return cells != o.cells ? cells < o.cells : seq < o.seq; }
+  };
+  struct Found {
+    std::vector<WorldPiece> pieces;
+    std::vector<Rank> rank;
+  };
+  // The pieces of groups [from, to): a group alone in its cells is one piece (its
+  // edges, any number, lie between the same two vertices); a run's first group
+  // makes the pieces of every group of the run, told apart by exact keys.
+  auto pieces_of_groups = [&](std::size_t from, std::size_t to, Scratch& w, Found& out) {
+    for (std::size_t g = from; g < to; ++g) {
+      if (run_at[g] == alone) {
+        const Edge& e = group_edge(g);
         WorldPiece piece{e.forward ? e.p : e.q, e.forward ? e.q : e.p, {}};
-        for (std::size_t i = lo; i < hi; ++i) piece.sharers.push_back(sharer(slots[i].e));
-        std::sort(piece.sharers.begin(), piece.sharers.end(), by_facet);
-        pieces.push_back(std::move(piece));
-      } else {
-        // Several vertex pairs share the cells: told apart by exact keys.
-        auto& keyed = w.keyed;
-        keyed.clear();
-        for (std::size_t i = lo; i < hi; ++i) keyed.emplace_back(exact_key(slots[i].e), slots[i].edge);
-        std::sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) {
-          if (key_less(x.first, y.first)) return true;
-          if (key_less(y.first, x.first)) return false;
-          return x.second < y.second;
-        });
-        for (std::size_t a = 0; a < keyed.size();) {
-          std::size_t b = a + 1;
-          while (b < keyed.size() && !key_less(keyed[a].first, keyed[b].first)) ++b;
-          w.group.clear();
-          for (std::size_t i = a; i < b; ++i) w.group.push_back(keyed[i].second);
-          sweep_line(w.group.data(), w.group.size(), w, pieces);
-          a = b;
-        }
+        for (std::size_t i = groups.start[g]; i < groups.start[g + 1]; ++i)
+          piece.sharers.push_back(sharer(edges[groups.order[i]]));   // (in facet order)
+        out.pieces.push_back(std::move(piece));
+        out.rank.push_back(Rank{cells_at[g], 0});
+        continue;
       }
-      lo = hi;
+      if (run_at[g] == in_run) continue;
+      auto& keyed = w.keyed;
+      keyed.clear();
+      const std::size_t lo = run_at[g];
+      for (std::size_t s = lo; s < ngroups && slots[s].hash == slots[lo].hash; ++s) {
+        const std::uint32_t h = slots[s].group;
+        for (std::size_t i = groups.start[h]; i < groups.start[h + 1]; ++i)
+          keyed.emplace_back(exact_key(edges[groups.order[i]]), groups.order[i]);
+      }
+      std::sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) {
+        if (key_less(x.first, y.first)) return true;
+        if (key_less(y.first, x.first)) return false;
+        return x.second < y.second;
+      });
+      const std::size_t first = out.pieces.size();
+      for (std::size_t a = 0; a < keyed.size();) {
+        std::size_t b = a + 1;
+        while (b < keyed.size() && !key_less(keyed[a].first, keyed[b].first)) ++b;
+        w.group.clear();
+        for (std::size_t i = a; i < b; ++i) w.group.push_back(keyed[i].second);
+        sweep_line(w.group.data(), w.group.size(), w, out.pieces);
+        a = b;
+      }
+      for (std::size_t i = first; i < out.pieces.size(); ++i)
+        out.rank.push_back(Rank{cells_at[g], static_cast<std::uint32_t>(i - first)});
     }
   };
-  // Chunks of slots cut where a run starts, in parallel; their pieces joined in
-  // chunk order are those of one pass over the runs in order.
-  const std::size_t nslots = slots.size(), nchunks = std::clamp<std::size_t>(nslots / 16384, 1, 256);
-  std::vector<std::size_t> cut(nchunks + 1, nslots);
-  for (std::size_t c = 0; c < nchunks; ++c) {
-    std::size_t at = nslots * c / nchunks;
-    while (at > 0 && at < nslots && slots[at].hash == slots[at - 1].hash) ++at;
-    cut[c] = at;
-  }
-  std::vector<std::vector<WorldPiece>> found(nchunks);
+  // Chunks of groups in parallel.
+  const std::size_t nchunks = std::clamp<std::size_t>(ngroups / 8192, 1, 256);
+  std::vector<Found> found(nchunks);
   parallel_for(static_cast<int>(nchunks), threads, [&](int c) {
     Scratch w;
     const auto k = static_cast<std::size_t>(c);
-    std::vector<WorldPiece> mine;   // (filled here, stored once: the chunks' slots share cache lines)
-    mine.reserve((cut[k + 1] - cut[k]) * 3 / 5);
-    pieces_of_runs(cut[k], cut[k + 1], w, mine);
+    const std::size_t from = ngroups * k / nchunks, to = ngroups * (k + 1) / nchunks;
+    Found mine;   // (filled here, stored once: the chunks' slots share cache lines)
+    mine.pieces.reserve(to - from);
+    mine.rank.reserve(to - from);
+    pieces_of_groups(from, to, w, mine);
     found[k] = std::move(mine);
   });
-  // In facet order (of each piece's first sharer; stable): the stages that read
-  // the pieces then walk the facets and vertices in order. Each piece's place,
-  // in one pass over the chunks in order; the pieces moved there in parallel.
-  std::vector<std::uint32_t> next(wf.facets.size() + 1, 0);
-  for (const auto& f : found)
-    for (const WorldPiece& p : f) ++next[p.sharers[0].facet + 1];
-  for (std::size_t f = 0; f < wf.facets.size(); ++f) next[f + 1] += next[f];
+  // In facet order (of each piece's first sharer), then by rank: the stages that
+  // read the pieces then walk the facets and vertices in order. Each piece's
+  // place, in one pass over the chunks; the pieces moved there in parallel.
+  const std::size_t nf_ = wf.facets.size();
+  std::vector<std::uint32_t> next(nf_ + 1, 0);
+  for (const Found& f : found)
+    for (const WorldPiece& p : f.pieces) ++next[p.sharers[0].facet + 1];
+  for (std::size_t f = 0; f < nf_; ++f) next[f + 1] += next[f];
+  const std::vector<std::uint32_t> facet_start(next);
   std::vector<std::vector<std::uint32_t>> place(nchunks);
   for (std::size_t c = 0; c < nchunks; ++c)
-    for (const WorldPiece& p : found[c]) place[c].push_back(next[p.sharers[0].facet]++);
+    for (const WorldPiece& p : found[c].pieces) place[c].push_back(next[p.sharers[0].facet]++);
   std::vector<WorldPiece> ordered(next.back());
+  std::vector<Rank> rank(next.back());
   parallel_for(static_cast<int>(nchunks), threads, [&](int c) {
     const auto k = static_cast<std::size_t>(c);
-    for (std::size_t i = 0; i < found[k].size(); ++i) ordered[place[k][i]] = std::move(found[k][i]);
-    std::vector<WorldPiece>().swap(found[k]);
+    for (std::size_t i = 0; i < found[k].pieces.size(); ++i) {
+      ordered[place[k][i]] = std::move(found[k].pieces[i]);
+      rank[place[k][i]] = found[k].rank[i];
+    }
+    Found().pieces.swap(found[k].pieces);
+  });
+  parallel_chunks(static_cast<int>(nf_), 4096, threads, [&](int, Chunk r) {
+    for (auto f = static_cast<std::size_t>(r.begin); f < static_cast<std::size_t>(r.end); ++f)
+      sort_by_rank(ordered, rank, facet_start[f], facet_start[f + 1]);
   });
   return ordered;
 }
