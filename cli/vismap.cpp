@@ -76,14 +76,16 @@ lines:
   --hidden             also the hidden lines: the JSON's "hidden" list, drawn
                        thin and dashed in the SVG
 engine:
-  --algorithm A        franklin (default: Franklin's variable grid) or newell
+  --algorithm A        franklin (default: Franklin's variable grid), newell
                        (Newell, Newell & Sancha's depth sort with plane
-                       splitting); both give the same map
+                       splitting) or bsp (a BSP tree built once per scene,
+                       then Newell's overlay; orthographic views only); all
+                       give the same map
   --threads N          threads for Franklin's engine and the JSON (default:
                        every usable core, one for scenes under 8192 faces);
                        the map is the same for every N
   --grid-c C           Franklin's grid constant c, B = c*min(sqrt(N),1/L) (default 4)
-  --painter FILE       with --algorithm newell: SVG of the ordered, split
+  --painter FILE       with --algorithm newell or bsp: SVG of the ordered, split
                        fragments filled back to front (the painter's drawing)
   --stats              print statistics on stderr and add phase timings to the
                        JSON (without it the JSON is byte-for-byte reproducible)
@@ -161,7 +163,8 @@ int main(int argc, char** argv) {
         const std::string& v = value();
         if (v == "franklin") eng.algorithm = vismap::Algorithm::Franklin;
         else if (v == "newell") eng.algorithm = vismap::Algorithm::Newell;
-        else throw Usage("--algorithm expects franklin or newell, got '" + v + "'");
+        else if (v == "bsp") eng.algorithm = vismap::Algorithm::Bsp;
+        else throw Usage("--algorithm expects franklin, newell or bsp, got '" + v + "'");
       }
       else if (a == "--json") json_path = value();
       else if (a == "--lines-only") svg.lines_only = true;
@@ -244,8 +247,8 @@ int main(int argc, char** argv) {
       throw Usage("-o " + svg_path + ": this build has no cairo (install libcairo2-dev and rebuild); use .svg or .dxf");
     if (no_regions && json_path.empty()) throw Usage("--no-regions applies to --json, which is not given");
     if (!svg_path.empty() && svg_path == json_path) throw Usage("--json and -o name the same file");
-    if (!painter_path.empty() && eng.algorithm != vismap::Algorithm::Newell)
-      throw Usage("--painter needs --algorithm newell (the fragments are Newell's)");
+    if (!painter_path.empty() && eng.algorithm == vismap::Algorithm::Franklin)
+      throw Usage("--painter needs --algorithm newell or bsp (the fragments are theirs)");
     if (!painter_path.empty() && (painter_path == json_path || painter_path == svg_path))
       throw Usage("--painter names the same file as another output");
     if (!views_spec.empty()) {

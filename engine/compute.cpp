@@ -8,6 +8,7 @@ VisibilityMap compute_map(const Scene& scene, const View& view, const Options& o
                           std::vector<PaintedFragment>* painter) {
   switch (options.algorithm) {
     case Algorithm::Newell: return visibility_newell(scene, view, options, painter);
+    case Algorithm::Bsp: return visibility_bsp(scene, view, options, painter);
     case Algorithm::Franklin: break;
   }
   return visibility_franklin(scene, view, options);

@@ -5,6 +5,9 @@
 // pieces) and arrangements/map_builder.cpp (the map). Stats follow the paper's
 // Figure 2: faces in, faces considered, fragments written, and the time spent
 // ordering and slicing and writing the fragments.
+//
+// The BSP engine (bsp.cpp) makes its drawing order from a tree and shares the
+// rest: map_from_order below.
 
 #include "arrangements/map_builder.h"
 #include "engine/newell_order.h"
@@ -16,24 +19,12 @@
 
 namespace vismap {
 
-VisibilityMap visibility_newell(const Scene& scene, const View& view, const Options& opt,
-                                std::vector<PaintedFragment>* painter) {
-  using namespace engine;
-  VisibilityMap map = start_map(scene, view);
+namespace engine {
+
+void map_from_order(const Scene& scene, const View& view, const Options& opt, ScreenScene& ss,
+                    const std::vector<Fragment>& order, VisibilityMap& map, PhaseClock& clock,
+                    const exact::FilterCounts& filter_before, std::vector<PaintedFragment>* painter) {
   Stats& st = map.stats;
-  const exact::FilterCounts filter_before = exact::filter_counts;
-  PhaseClock clock;
-
-  // Transforming and initialising: project exactly, drop what cannot be seen
-  // (outside, edge-on, back faces of closed solids), as Franklin's engine does.
-  ScreenScene ss = make_screen_scene(scene, view, opt, st);
-  st.time("project_and_cull", clock.lap());
-
-  // Ordering and slicing faces: the list by farthest depth, the five tests,
-  // reordering with marks, splitting by planes.
-  std::vector<Fragment> order = depth_sort(ss, st);
-  st.time("order_and_split", clock.lap());
-
   // Writing the fragments, exactly: every line that may be drawn or bound a
   // region (intersection lines of piercing faces included) cut where anything on
   // it may change, each piece judged by what is painted beside and over it.
@@ -51,7 +42,7 @@ VisibilityMap visibility_newell(const Scene& scene, const View& view, const Opti
   unscale_map(map, ss.scale_exp);
   st.time("arrangement", clock.lap());
   st.count("visible_segments", static_cast<std::int64_t>(map.segments.size()));
-  // (Newell's overlay needs the whole map; a lines-only map just leaves out its regions.)
+  // (The overlay needs the whole map; a lines-only map just leaves out its regions.)
   if (opt.regions) st.count("regions", static_cast<std::int64_t>(map.regions.size()));
   else { map.regions.clear(); map.has_regions = false; }
   st.count("predicates", exact::filter_counts.calls - filter_before.calls);
@@ -73,6 +64,30 @@ VisibilityMap visibility_newell(const Scene& scene, const View& view, const Opti
       painter->push_back(std::move(pf));
     }
   }
+}
+
+}  // namespace engine
+
+VisibilityMap visibility_newell(const Scene& scene, const View& view, const Options& opt,
+                                std::vector<PaintedFragment>* painter) {
+  using namespace engine;
+  VisibilityMap map = start_map(scene, view);
+  Stats& st = map.stats;
+  const exact::FilterCounts filter_before = exact::filter_counts;
+  PhaseClock clock;
+
+  // Transforming and initialising: project exactly, drop what cannot be seen
+  // (outside, edge-on, back faces of closed solids), as Franklin's engine does.
+  ScreenScene ss = make_screen_scene(scene, view, opt, st);
+  st.time("project_and_cull", clock.lap());
+
+  // Ordering and slicing faces: the list by farthest depth, the five tests,
+  // reordering with marks, splitting by planes.
+  std::vector<Fragment> order = depth_sort(ss, st);
+  st.time("order_and_split", clock.lap());
+
+  // Writing the fragments, the map, the hidden lines.
+  map_from_order(scene, view, opt, ss, order, map, clock, filter_before, painter);
   return map;
 }
 

@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "arrangements/map_builder.h"
+#include "engine/engine_run.h"
 #include "engine/newell_order.h"
+#include "engine/visibility.h"
 
 namespace vismap::engine {
 
@@ -45,5 +47,12 @@ std::vector<std::vector<Cut>> cut_at_crossings(const ScreenScene& ss, Stats& sta
 std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Fragment>& order,
                                    std::vector<std::vector<Cut>>& cuts, const std::vector<FacesList>& faces,
                                    Stats& stats);
+
+// Everything after the drawing order, for Newell's engine and the BSP engine
+// (bsp.cpp): the pieces above, the map, its stats and hidden lines, and the
+// painter's fragments when asked. `filter_before`: the filter counts at the start.
+void map_from_order(const Scene& scene, const View& view, const Options& opt, ScreenScene& ss,
+                    const std::vector<Fragment>& order, VisibilityMap& map, PhaseClock& clock,
+                    const exact::FilterCounts& filter_before, std::vector<PaintedFragment>* painter);
 
 }  // namespace vismap::engine

@@ -33,9 +33,21 @@ struct PaintedFragment {
 VisibilityMap visibility_newell(const Scene& scene, const View& view, const Options& options,
                                 std::vector<PaintedFragment>* painter = nullptr);
 
+namespace engine {
+struct BspTree;   // (engine/bsp_tree.h)
+}
+
+// The BSP engine: the scene's BSP tree (built once; `tree`, if given, is one
+// build_bsp_tree made for this scene, shared by several views) traversed from
+// the eye gives the drawing order; then Newell's overlay. The same map as the
+// other two. Orthographic views only (throws std::invalid_argument).
+VisibilityMap visibility_bsp(const Scene& scene, const View& view, const Options& options,
+                             std::vector<PaintedFragment>* painter = nullptr,
+                             const engine::BspTree* tree = nullptr);
+
 // The map by the engine options.algorithm names: the one place that dispatches
 // (the library's compute, the command line, the fuzz harness and the stability
-// stress call it). `painter`: as visibility_newell's, Newell's engine only.
+// stress call it). `painter`: as visibility_newell's, Newell's and the BSP engine only.
 VisibilityMap compute_map(const Scene& scene, const View& view, const Options& options,
                           std::vector<PaintedFragment>* painter = nullptr);
 

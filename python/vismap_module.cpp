@@ -359,7 +359,8 @@ PYBIND11_MODULE(vismap, mod) {
         if (threads < 0) throw py::value_error("threads must be 0 (every usable core) or more");
         if (algorithm == "franklin") options.algorithm = vismap::Algorithm::Franklin;
         else if (algorithm == "newell") options.algorithm = vismap::Algorithm::Newell;
-        else throw py::value_error("algorithm is 'franklin' or 'newell', got '" + algorithm + "'");
+        else if (algorithm == "bsp") options.algorithm = vismap::Algorithm::Bsp;
+        else throw py::value_error("algorithm is 'franklin', 'newell' or 'bsp', got '" + algorithm + "'");
         py::gil_scoped_release unlocked;
         if (const auto* path = std::get_if<std::string>(&scene))
           return vismap::compute(vismap::read_scene(*path, {}, format), camera, options);

@@ -1,8 +1,10 @@
-// Newell's engine (depth sort with plane splitting) against Franklin's and the
-// independent checker: both engines must write the same map (regions and
-// segments, byte for byte) on the degenerate corpus and on seeded random scenes,
-// the checker must accept Newell's maps, and the painter's fragments, painted
-// back to front, must show the map's face at every pixel centre away from edges.
+// Newell's engine (depth sort with plane splitting) and the BSP engine (a tree
+// built once, traversed per view, then Newell's overlay) against Franklin's and
+// the independent checker: the engines must write the same map (regions,
+// segments and hidden lines, byte for byte) on the degenerate corpus and on
+// seeded random scenes (the BSP engine in every orthographic view), the checker
+// must accept their maps, and the painter's fragments, painted back to front,
+// must show the map's face at every pixel centre away from edges.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,6 +17,7 @@
 
 #include "arrangements/json_writer.h"
 #include "bench/scene_gen.h"
+#include "engine/bsp_tree.h"
 #include "engine/visibility.h"
 #include "tests/test_support.h"
 
@@ -177,6 +180,18 @@ TEST_P(Corpus, NewellWritesFranklinsMap) {
   vismap_check::Options opt;
   opt.smooth = args.find("--smooth") != std::string::npos;
   expect_checked(vismap::read_scene(scene.string()), jn, opt, file + " (newell)");
+  // The BSP engine: the same map in an orthographic view; a perspective one is refused.
+  const fs::path bsp = dir / "bsp.json";
+  const std::string run_b = base + " --algorithm bsp --json '" + bsp.string() + "' 2>/dev/null";
+  if (args.find("--eye") == std::string::npos) {
+    ASSERT_EQ(std::system(run_b.c_str()), 0) << run_b;
+    const std::string jb = slurp(bsp);
+    EXPECT_EQ(without_stats(jb), without_stats(jn)) << file << ": the BSP engine's map differs";
+    expect_checked(vismap::read_scene(scene.string()), jb, opt, file + " (bsp)");
+  } else {
+    EXPECT_NE(std::system(run_b.c_str()), 0) << run_b << ": a perspective view, which the BSP engine refuses";
+    EXPECT_FALSE(fs::exists(bsp)) << run_b;
+  }
   const std::string svg = slurp(painter);
   EXPECT_EQ(svg.rfind("<svg", 0), 0u) << file;
   EXPECT_NE(svg.find("</svg>"), std::string::npos) << file;
@@ -205,6 +220,9 @@ TEST_P(Random, SameMapAsFranklinAndCheckerAccepts) {
   hidden.hidden = true;
   const std::string jn = map_json(vismap::visibility_newell(scene, view, hidden));
   EXPECT_EQ(jn, map_json(vismap::visibility_franklin(scene, view, hidden))) << what << ": the engines' maps differ";
+  if (!view.perspective) {
+    EXPECT_EQ(map_json(vismap::visibility_bsp(scene, view, hidden)), jn) << what << ": the BSP engine's map differs";
+  }
   EXPECT_NE(jn.find("\"hidden\""), std::string::npos) << what;
   vismap_check::Options opt;
   opt.samples = 1000;
@@ -230,9 +248,11 @@ TEST(Differential, ManySeeds) {
       const vismap::View view = vismap::make_view(cases[c].camera, scene);
       vismap::Options hidden;
       hidden.hidden = true;
-      EXPECT_EQ(map_json(vismap::visibility_newell(scene, view, hidden)),
-                map_json(vismap::visibility_franklin(scene, view, hidden)))
-          << cases[c].name << " seed " << seed;
+      const std::string jf = map_json(vismap::visibility_franklin(scene, view, hidden));
+      EXPECT_EQ(map_json(vismap::visibility_newell(scene, view, hidden)), jf) << cases[c].name << " seed " << seed;
+      if (!view.perspective) {
+        EXPECT_EQ(map_json(vismap::visibility_bsp(scene, view, hidden)), jf) << cases[c].name << " seed " << seed << " (bsp)";
+      }
     }
 }
 
@@ -250,6 +270,10 @@ TEST(Differential, CyclesAreSplit) {
     reorders += counted(n, "reorders");
     EXPECT_GT(counted(n, "fragments_written"), 3) << "seed " << seed << ": a cycle was painted unsplit";
     EXPECT_EQ(map_json(n), map_json(vismap::visibility_franklin(scene, view, {}))) << "sticks seed " << seed;
+    // The tree breaks the cycle too: some stick is cut by another's plane.
+    vismap::VisibilityMap b = vismap::visibility_bsp(scene, view, {});
+    EXPECT_GT(counted(b, "bsp_splits"), 0) << "sticks seed " << seed << ": a cycle was left in the tree";
+    EXPECT_EQ(map_json(b), map_json(n)) << "sticks seed " << seed << " (bsp)";
   }
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
     vismap::Scene scene = vismap::gen::random_triangles(12, 0.8, seed);
@@ -280,7 +304,35 @@ TEST(Lattice, CheckerAcceptsNewellsMaps) {
         opt.samples = 400;
         expect_checked(scene, jn, opt, what);
         EXPECT_EQ(jn, map_json(vismap::visibility_franklin(scene, view, {}))) << what;
+        EXPECT_EQ(map_json(vismap::visibility_bsp(scene, view, {})), jn) << what << " (bsp)";
       }
+}
+
+// One tree for many views: 12 directions around each scene (above, below and
+// level with it, faces seen edge-on among them), the tree built once; each
+// view's map is the one-view run's, and Franklin's.
+TEST(Bsp, OneTreeServesEveryView) {
+  for (const auto& rc : random_cases()) {
+    if (rc.camera.eye) continue;
+    const vismap::Scene scene = rc.make(5);
+    const vismap::engine::BspTree tree = vismap::engine::build_bsp_tree(scene);
+    EXPECT_EQ(static_cast<std::int64_t>(tree.fragments.size() - tree.facets.facets.size()), tree.splits) << rc.name;
+    for (int k = 0; k < 12; ++k) {
+      const double a = 2 * std::acos(-1.0) * k / 12, elevation = k % 3 == 0 ? 0 : k % 3 == 1 ? 0.6 : -0.8;
+      const vismap::View view = vismap::make_view(ortho({std::cos(a), std::sin(a), elevation}), scene);
+      const std::string shared = map_json(vismap::visibility_bsp(scene, view, {}, nullptr, &tree));
+      EXPECT_EQ(shared, map_json(vismap::visibility_bsp(scene, view, {}))) << rc.name << " view " << k;
+      EXPECT_EQ(shared, map_json(vismap::visibility_franklin(scene, view, {}))) << rc.name << " view " << k;
+    }
+  }
+}
+
+// The BSP engine draws orthographic views only: a perspective view is refused
+// with a message, not drawn wrong.
+TEST(Bsp, PerspectiveIsRefused) {
+  const vismap::Scene scene = vismap::gen::random_triangles(5, 0.4, 1);
+  const vismap::View view = vismap::make_view(persp({1.5, 2.2, 1.7}, {0.5, 0.5, 0.5}, 60), scene);
+  EXPECT_THROW(vismap::visibility_bsp(scene, view, {}), std::invalid_argument);
 }
 
 bool has_segment(const vismap::VisibilityMap& m, const std::string& x0, const std::string& y0,
@@ -362,10 +414,13 @@ double ring_distance(const Ring& r, double x, double y) {
 // Paints the fragments back to front on a res x res raster over the map and
 // compares, at every pixel centre farther than a small margin from any fragment
 // side and any region boundary, the last-painted face with the map's region.
-void expect_painter_matches_map(const vismap::Scene& scene, const vismap::Camera& cam, const std::string& what) {
+// (bsp: the BSP engine's fragments, in its tree's order.)
+void expect_painter_matches_map(const vismap::Scene& scene, const vismap::Camera& cam, const std::string& what,
+                                bool bsp = false) {
   const vismap::View view = vismap::make_view(cam, scene);
   std::vector<vismap::PaintedFragment> frags;
-  const vismap::VisibilityMap map = vismap::visibility_newell(scene, view, {}, &frags);
+  const vismap::VisibilityMap map =
+      bsp ? vismap::visibility_bsp(scene, view, {}, &frags) : vismap::visibility_newell(scene, view, {}, &frags);
   ASSERT_FALSE(frags.empty()) << what;
   std::vector<Ring> frag_rings;
   for (const auto& f : frags) frag_rings.push_back(ring_of(f.polygon));
@@ -423,6 +478,9 @@ TEST(Painter, BackToFrontShowsTheMap) {
     expect_painter_matches_map(interpenetrating_boxes(4, seed), ortho({-1, -2, -1.5}), "boxes" + s);
     expect_painter_matches_map(random_squares_depth(40, 4, seed), ortho({-0.3, -0.5, -1}), "squares" + s);
     expect_painter_matches_map(cyclic_sticks(seed), ortho({0, 0, -1}), "cyclic sticks" + s);
+    expect_painter_matches_map(random_triangles(30, 0.5, seed), ortho({-1, -2, -1.5}), "bsp triangles" + s, true);
+    expect_painter_matches_map(interpenetrating_boxes(4, seed), ortho({-1, -2, -1.5}), "bsp boxes" + s, true);
+    expect_painter_matches_map(cyclic_sticks(seed), ortho({0, 0, -1}), "bsp cyclic sticks" + s, true);
   }
 }
 

@@ -1,0 +1,58 @@
+// The BSP tree (lecture notes on hidden-surface removal, "binary space
+// partitioning"): built once per scene in world space, with exact splitting
+// planes; traversed per view, it gives a drawing order (back to front) from any
+// eye. Fragments keep their facet (and so their face); split points are exact
+// rationals. Camera-independent, so several views of one scene share it.
+// Internal to the engine (no CGAL type).
+#pragma once
+#include <gmpxx.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "engine/camera.h"
+#include "engine/scene.h"
+#include "engine/world_facets.h"
+
+namespace vismap::engine {
+
+struct BspTree {
+  // A fragment's corner: an input vertex (its canonical id), or a point where a
+  // splitting plane cut a fragment's edge (its exact world coordinates).
+  struct Point {
+    std::int64_t vertex = -1;
+    mpq_class x, y, z;   // (split points only)
+  };
+  // A convex piece of a world facet, its corners in the facet's order.
+  struct Fragment {
+    std::uint32_t facet = 0;   // index in `facets` (make_world_facets' order)
+    std::vector<std::uint32_t> corners;   // indices in `points`
+  };
+  // A node's plane is its first fragment's facet's, spanned by three of its
+  // corners (input vertices); `on` lists the fragments in that plane.
+  struct Node {
+    std::uint32_t span[3] = {0, 0, 0};   // input vertex ids
+    std::vector<std::uint32_t> on;
+    int front = -1, back = -1;           // subtrees: the plane's positive and negative sides
+  };
+
+  WorldFacets facets;   // the scene's facets, as every engine makes them
+  std::vector<Point> points;
+  std::vector<Fragment> fragments;
+  std::vector<Node> nodes;
+  int root = -1;
+  std::int64_t splits = 0;   // fragments cut in two
+  int depth = 0;             // the longest path from the root, in nodes
+};
+
+// The tree of the scene's facets (all of them: culling depends on the view).
+// Throws InputError as make_world_facets does.
+BspTree build_bsp_tree(const Scene& scene, int threads = 1);
+
+// The fragments in drawing order for an orthographic view (first drawn first):
+// for any two whose projections overlap in an open set, the later one is nearer
+// there, or at equal depth of a lower face index. Fragments in planes seen
+// edge-on come in any place (they hide nothing).
+std::vector<std::uint32_t> back_to_front(const BspTree& tree, const Scene& scene, const View& view);
+
+}  // namespace vismap::engine
