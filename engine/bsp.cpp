@@ -36,22 +36,42 @@ std::vector<int> screen_facets(const BspTree& tree, const ScreenScene& ss) {
   return screen;
 }
 
-// A split point's image: the view's rows applied exactly, scaled as the screen scene is.
-P3 image_of(const BspTree::Point& p, const View& view, int scale_exp) {
-  auto row = [&](int r) {
-    mpq_class v = mpq_class(view.m[r][0]) * p.x + mpq_class(view.m[r][1]) * p.y + mpq_class(view.m[r][2]) * p.z +
-                  mpq_class(view.m[r][3]);
-    times_pow2(v, scale_exp);
-    return FT(v);
-  };
-  return P3{row(0), row(1), row(2)};
-}
+// The images of the tree's points in one view, made as fragments need them: an
+// input vertex's is its facet's corner (the very same numbers: the overlay then
+// knows it lies in the facet's plane without arithmetic); a split point's is
+// a' + t (b' - a') of its segment's images, lazily (a parallel projection is
+// affine: t is the world's), exact only if a predicate needs it.
+class Images {
+ public:
+  explicit Images(const BspTree& tree) : tree_(tree), image_(tree.points.size()), made_(tree.points.size(), 0) {}
+
+  const P3& of(std::uint32_t i, const Facet& F) {
+    if (!made_[i]) {
+      const BspTree::Point& p = tree_.points[i];
+      if (p.vertex >= 0) {
+        image_[i] = F.v[static_cast<std::size_t>(std::find(F.id.begin(), F.id.end(), p.vertex) - F.id.begin())];
+      } else {
+        const P3 &a = of(p.a, F), &b = of(p.b, F);
+        const FT t(p.t);
+        image_[i] = P3{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)};
+      }
+      made_[i] = 1;
+    }
+    return image_[i];
+  }
+
+ private:
+  const BspTree& tree_;
+  std::vector<P3> image_;
+  std::vector<char> made_;
+};
 
 // The tree's fragments in drawing order, on the screen: those of occluding
 // facets, counter-clockwise, as Newell's depth sort writes its own.
 std::vector<Fragment> fragments_in_order(const BspTree& tree, const Scene& scene, const View& view,
                                          const ScreenScene& ss) {
   const std::vector<int> screen = screen_facets(tree, ss);
+  Images images(tree);
   std::vector<Fragment> out;
   for (std::uint32_t xi : back_to_front(tree, scene, view)) {
     const BspTree::Fragment& x = tree.fragments[xi];
@@ -60,12 +80,8 @@ std::vector<Fragment> fragments_in_order(const BspTree& tree, const Scene& scene
     if (!F.occluder) continue;
     Fragment f{fi, F.face, {}, {}, {}};
     for (std::uint32_t c : x.corners) {
-      const BspTree::Point& p = tree.points[c];
-      // An input vertex is the facet's own corner (the very same numbers: the
-      // overlay knows it lies in the facet's plane without arithmetic).
-      P3 q = p.vertex >= 0 ? F.v[static_cast<std::size_t>(std::find(F.id.begin(), F.id.end(), p.vertex) - F.id.begin())]
-                           : image_of(p, view, ss.scale_exp);
-      if (f.v.empty() || !(f.v.back().xy() == q.xy())) f.v.push_back(std::move(q));
+      const P3& q = images.of(c, F);
+      if (f.v.empty() || !(f.v.back().xy() == q.xy())) f.v.push_back(q);
     }
     while (f.v.size() > 1 && f.v.front().xy() == f.v.back().xy()) f.v.pop_back();
     if (F.facing == Facing::Back) std::reverse(f.v.begin(), f.v.end());   // counter-clockwise

@@ -80,7 +80,11 @@ class Builder {
   const Scene& scene_;
   BspTree& t_;
   std::vector<std::uint32_t> point_of_;                  // input vertex -> its point, or ~0u
-  std::vector<std::array<Interval, 3>> split_interval_;   // split points' coordinates, by point - first_split_
+  // Per point (unused for input vertices): its coordinates as intervals, the
+  // segment it was cut from, and the plane that cut it (spanning vertex ids).
+  std::vector<std::array<Interval, 3>> split_interval_;
+  std::vector<std::array<std::uint32_t, 2>> parents_;
+  std::vector<std::array<std::uint32_t, 3>> cut_by_;
 
   std::uint32_t point_of_vertex(std::uint32_t id) {
     if (point_of_.empty()) point_of_.assign(scene_.vertices.size(), ~0u);
@@ -90,6 +94,8 @@ class Builder {
       p.vertex = id;
       t_.points.push_back(p);
       split_interval_.emplace_back();
+      parents_.emplace_back();
+      cut_by_.emplace_back();
     }
     return point_of_[id];
   }
@@ -105,6 +111,14 @@ class Builder {
       if (v.inf() > 0) return 1;
       if (v.sup() < 0) return -1;
     }
+    // In the plane, known without rationals (the commonest case on a mesh: a
+    // point cut on an edge two facets share lies in both their planes): the plane
+    // holds the segment it was cut from, or is the plane that cut it.
+    const auto& [p0, p1] = parents_[i];
+    if (side(p0, pl) == 0 && side(p1, pl) == 0) return 0;
+    const auto& c = cut_by_[i];
+    auto in_plane = [&](std::uint32_t id) { return world::orientation(*pl.o, *pl.a, *pl.b, scene_.vertices[id]) == 0; };
+    if (in_plane(c[0]) && in_plane(c[1]) && in_plane(c[2])) return 0;
     return sgn(value(i, pl));
   }
 
@@ -127,16 +141,21 @@ class Builder {
   }
 
   // Where the plane cuts segment p -> q (strictly between them: their sides differ).
-  std::uint32_t cut_point(std::uint32_t p, std::uint32_t q, Plane& pl) {
+  std::uint32_t cut_point(std::uint32_t p, std::uint32_t q, Plane& pl, const std::array<std::uint32_t, 3>& span) {
     const mpq_class vp = value(p, pl), vq = value(q, pl);
     const mpq_class t = vp / (vp - vq);
     const auto a = coordinates(p), b = coordinates(q);
     BspTree::Point x;
+    x.a = p;
+    x.b = q;
+    x.t = t;
     x.x = a[0] + t * (b[0] - a[0]);
     x.y = a[1] + t * (b[1] - a[1]);
     x.z = a[2] + t * (b[2] - a[2]);
     split_interval_.push_back({Interval(CGAL::to_interval(x.x)), Interval(CGAL::to_interval(x.y)),
                                Interval(CGAL::to_interval(x.z))});
+    parents_.push_back({p, q});
+    cut_by_.push_back(span);
     t_.points.push_back(std::move(x));
     return static_cast<std::uint32_t>(t_.points.size() - 1);
   }
@@ -144,6 +163,7 @@ class Builder {
   // Three corners of facet f that span its plane (a facet's corners are input vertices).
   std::array<std::uint32_t, 3> span_of(std::uint32_t f) const {
     const auto& v = t_.facets.facets[f].v;
+    if (v.size() == 3) return {v[0], v[1], v[2]};   // (facets are not degenerate)
     for (std::size_t j = 2; j < v.size(); ++j) {
       const auto n = world::normal_of<CGAL::Mpzf>(scene_.vertices[v[0]], scene_.vertices[v[1]], scene_.vertices[v[j]]);
       if (n[0].sign() != 0 || n[1].sign() != 0 || n[2].sign() != 0) return {v[0], v[1], v[static_cast<std::size_t>(j)]};
@@ -209,7 +229,7 @@ class Builder {
       else if (s == 1) front.push_back(fi);
       else if (s == 2) back.push_back(fi);
       else {
-        auto [f, b] = cut(fi, sg, pl);
+        auto [f, b] = cut(fi, sg, pl, span);
         front.push_back(f);
         back.push_back(b);
         ++t_.splits;
@@ -218,7 +238,8 @@ class Builder {
   }
 
   // Fragment fi cut by the plane (sg: its corners' sides): its front and back parts.
-  std::pair<std::uint32_t, std::uint32_t> cut(std::uint32_t fi, const std::vector<int>& sg, Plane& pl) {
+  std::pair<std::uint32_t, std::uint32_t> cut(std::uint32_t fi, const std::vector<int>& sg, Plane& pl,
+                                              const std::array<std::uint32_t, 3>& span) {
     BspTree::Fragment f, b;
     f.facet = b.facet = t_.fragments[fi].facet;
     const std::vector<std::uint32_t> c = t_.fragments[fi].corners;   // (a copy: fi is overwritten)
@@ -228,7 +249,7 @@ class Builder {
       if (sg[k] >= 0) f.corners.push_back(c[k]);
       if (sg[k] <= 0) b.corners.push_back(c[k]);
       if (sg[k] * sg[k1] < 0) {
-        const std::uint32_t x = cut_point(c[k], c[k1], pl);
+        const std::uint32_t x = cut_point(c[k], c[k1], pl, span);
         f.corners.push_back(x);
         b.corners.push_back(x);
       }

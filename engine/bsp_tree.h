@@ -18,10 +18,12 @@ namespace vismap::engine {
 
 struct BspTree {
   // A fragment's corner: an input vertex (its canonical id), or a point where a
-  // splitting plane cut a fragment's edge (its exact world coordinates).
+  // splitting plane cut a fragment's edge a -> b: a + t (b - a), exactly.
   struct Point {
     std::int64_t vertex = -1;
-    mpq_class x, y, z;   // (split points only)
+    std::uint32_t a = 0, b = 0;   // (split points only: indices in `points`)
+    mpq_class t;                  //   (a parallel projection keeps t on the screen)
+    mpq_class x, y, z;            //   its world coordinates
   };
   // A convex piece of a world facet, its corners in the facet's order.
   struct Fragment {
