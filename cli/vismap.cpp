@@ -290,6 +290,8 @@ int main(int argc, char** argv) {
     for (const vismap::cli::NamedView& c : cameras) {
       try {
         views.push_back(vismap::make_view(c.camera, scene));
+        if (eng.algorithm == vismap::Algorithm::Bsp && views.back().perspective)
+          throw std::invalid_argument("--algorithm bsp draws orthographic views only (--dir); use franklin or newell for a perspective view");
       } catch (const std::invalid_argument& e) {
         std::fprintf(stderr, "vismap: %s%s\n", c.options.empty() ? "" : (c.options + ": ").c_str(), e.what());
         return 2;
@@ -303,6 +305,7 @@ int main(int argc, char** argv) {
     // A sheet: the views' maps kept for the one page drawn after them.
     const std::string note = vismap::cli::sheet_note(views_spec), sheet_path = note.empty() ? "" : svg_path;
     std::vector<vismap::VisibilityMap> sheet_maps;
+    vismap::ViewSeries series(scene, eng);   // (what no camera changes, made once for every view)
     const std::string json_pattern = json_path, svg_pattern = note.empty() ? svg_path : "", painter_pattern = painter_path;
     for (std::size_t n = 0; n < views.size(); ++n) {
       const vismap::View& view = views[n];
@@ -313,7 +316,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "vismap: view %zu of %zu (%s)\n", n + 1, views.size(), cameras[n].options.c_str());
       }
       std::vector<vismap::PaintedFragment> fragments;
-      vismap::VisibilityMap map = vismap::compute_map(scene, view, eng, painter_path.empty() ? nullptr : &fragments);
+      vismap::VisibilityMap map = series.map(view, painter_path.empty() ? nullptr : &fragments);
       if (stats) {
         for (const auto& [k, v] : map.stats.counts) std::fprintf(stderr, "  %-36s %lld\n", k.c_str(), static_cast<long long>(v));
         for (const auto& [k, v] : map.stats.seconds) std::fprintf(stderr, "  %-36s %.3f s\n", k.c_str(), v);

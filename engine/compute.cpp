@@ -2,6 +2,8 @@
 // comes through here, so that a new engine is added in one place.
 #include "engine/visibility.h"
 
+#include "engine/bsp_tree.h"
+
 namespace vismap {
 
 VisibilityMap compute_map(const Scene& scene, const View& view, const Options& options,
@@ -12,6 +14,15 @@ VisibilityMap compute_map(const Scene& scene, const View& view, const Options& o
     case Algorithm::Franklin: break;
   }
   return visibility_franklin(scene, view, options);
+}
+
+ViewSeries::ViewSeries(const Scene& scene, const Options& options) : scene_(scene), options_(options) {}
+ViewSeries::~ViewSeries() = default;
+
+VisibilityMap ViewSeries::map(const View& view, std::vector<PaintedFragment>* painter) {
+  if (options_.algorithm != Algorithm::Bsp || view.perspective) return compute_map(scene_, view, options_, painter);
+  if (!tree_) tree_ = std::make_unique<engine::BspTree>(engine::build_bsp_tree(scene_, options_.threads));
+  return visibility_bsp(scene_, view, options_, painter, tree_.get());
 }
 
 }  // namespace vismap

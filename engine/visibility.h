@@ -1,6 +1,7 @@
 // The engines' entry points: scene + view -> exact visibility map (Options, the
 // library's, include/vismap/vismap.h).
 #pragma once
+#include <memory>
 #include <vector>
 
 #include "arrangements/visibility_map.h"
@@ -50,5 +51,20 @@ VisibilityMap visibility_bsp(const Scene& scene, const View& view, const Options
 // stress call it). `painter`: as visibility_newell's, Newell's and the BSP engine only.
 VisibilityMap compute_map(const Scene& scene, const View& view, const Options& options,
                           std::vector<PaintedFragment>* painter = nullptr);
+
+// Many views of one scene: what does not depend on the camera is made once (the
+// BSP engine's tree, on its first view), then each view's map, the same as
+// compute_map's for that view.
+class ViewSeries {
+ public:
+  ViewSeries(const Scene& scene, const Options& options);
+  ~ViewSeries();
+  VisibilityMap map(const View& view, std::vector<PaintedFragment>* painter = nullptr);
+
+ private:
+  const Scene& scene_;
+  Options options_;
+  std::unique_ptr<engine::BspTree> tree_;
+};
 
 }  // namespace vismap

@@ -578,6 +578,36 @@ std::array<double, 4> group_box(const std::string& svg, const std::string& id) {
 
 // --views sheet: four views on one SVG page, each map a single run's, the
 // orthographic views at one scale and lined up as first- or third-angle wants.
+// The BSP engine over many views builds its tree once (ViewSeries) and writes,
+// for each view, the single run's map with Franklin's engine (the stats aside:
+// they name the engine's own work). A perspective view is refused before any
+// output is written.
+TEST(Views, OneBspTreeForEveryView) {
+  TempDir dir("views_bsp");
+  const std::string scene = (kData / "interpenetrating_boxes.off").string();
+  const Result r = vismap_test::run({kBin, scene, "--views", "orbit:5,25", "--algorithm", "bsp", "--hidden", "--json",
+                                     dir.file("b%d.json")},
+                                    dir.path());
+  ASSERT_EQ(r.status, 0) << both(r);
+  const auto cameras = cameras_run(r.err);
+  ASSERT_EQ(cameras.size(), 5u) << both(r);
+  auto map_of = [](const std::string& json) { return json.substr(0, json.find("\"stats\":")); };
+  for (std::size_t k = 0; k < cameras.size(); ++k) {
+    std::vector<std::string> argv = {kBin, scene, "--hidden", "--json", dir.file("one.json")};
+    argv.insert(argv.end(), cameras[k].begin(), cameras[k].end());
+    ASSERT_EQ(vismap_test::run(argv, dir.path()).status, 0);
+    const std::string multi = vismap_test::slurp(dir.file("b" + std::to_string(k) + ".json"));
+    EXPECT_NE(multi.find("\"bsp_fragments\""), std::string::npos) << k;
+    EXPECT_EQ(map_of(multi), map_of(vismap_test::slurp(dir.file("one.json")))) << k;
+  }
+  const std::string views = dir.write("views.txt", "--dir -1,-2,-4\n--eye 3,3,3\n");
+  const Result p = vismap_test::run({kBin, scene, "--views", views, "--algorithm", "bsp", "--json", dir.file("p%d.json")},
+                                    dir.path());
+  EXPECT_EQ(p.status, 2) << both(p);
+  EXPECT_NE(p.err.find("orthographic"), std::string::npos) << both(p);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("p0.json")));
+}
+
 TEST(Views, ASheetLinesUpFrontTopAndRight) {
   TempDir dir("views_sheet");
   const std::string scene = (kData / "holes_block.vmscene.json").string();
