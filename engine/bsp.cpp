@@ -113,7 +113,8 @@ VisibilityMap visibility_bsp(const Scene& scene, const View& view, const Options
   st.count("bsp_splits", tree.splits);
   st.count("bsp_nodes", static_cast<std::int64_t>(tree.nodes.size()));
   st.count("bsp_depth", tree.depth);
-  st.time("bsp_tree", clock.lap());
+  if (!shared) st.time("bsp_tree", clock.lap());   // (a shared tree's making is its maker's to count)
+  else clock.lap();
 
   // Transforming and initialising, as the other engines do.
   ScreenScene ss = make_screen_scene(scene, view, opt, st);

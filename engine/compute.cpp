@@ -2,6 +2,8 @@
 // comes through here, so that a new engine is added in one place.
 #include "engine/visibility.h"
 
+#include <chrono>
+
 #include "engine/bsp_tree.h"
 
 namespace vismap {
@@ -21,8 +23,15 @@ ViewSeries::~ViewSeries() = default;
 
 VisibilityMap ViewSeries::map(const View& view, std::vector<PaintedFragment>* painter) {
   if (options_.algorithm != Algorithm::Bsp || view.perspective) return compute_map(scene_, view, options_, painter);
-  if (!tree_) tree_ = std::make_unique<engine::BspTree>(engine::build_bsp_tree(scene_, options_.threads));
-  return visibility_bsp(scene_, view, options_, painter, tree_.get());
+  double built = 0;   // (the first view's stats count the tree's making)
+  if (!tree_) {
+    const auto t0 = std::chrono::steady_clock::now();
+    tree_ = std::make_unique<engine::BspTree>(engine::build_bsp_tree(scene_, options_.threads));
+    built = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  VisibilityMap map = visibility_bsp(scene_, view, options_, painter, tree_.get());
+  if (built > 0) map.stats.seconds.insert(map.stats.seconds.begin(), {"bsp_tree", built});
+  return map;
 }
 
 }  // namespace vismap
