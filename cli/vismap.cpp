@@ -79,7 +79,7 @@ engine:
   --algorithm A        franklin (default: Franklin's variable grid), newell
                        (Newell, Newell & Sancha's depth sort with plane
                        splitting) or bsp (a BSP tree built once per scene,
-                       then Newell's overlay; orthographic views only); all
+                       then Newell's overlay; with --views, one tree); all
                        give the same map
   --threads N          threads for Franklin's engine and the JSON (default:
                        every usable core, one for scenes under 8192 faces);
@@ -290,8 +290,6 @@ int main(int argc, char** argv) {
     for (const vismap::cli::NamedView& c : cameras) {
       try {
         views.push_back(vismap::make_view(c.camera, scene));
-        if (eng.algorithm == vismap::Algorithm::Bsp && views.back().perspective)
-          throw std::invalid_argument("--algorithm bsp draws orthographic views only (--dir); use franklin or newell for a perspective view");
       } catch (const std::invalid_argument& e) {
         std::fprintf(stderr, "vismap: %s%s\n", c.options.empty() ? "" : (c.options + ": ").c_str(), e.what());
         return 2;

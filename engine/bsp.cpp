@@ -3,7 +3,8 @@
 // are then overlaid as Newell's engine overlays its own (newell_overlay.cpp).
 // One call per step.
 
-#include <stdexcept>
+#include <cmath>
+#include <optional>
 
 #include "engine/bsp_tree.h"
 #include "engine/engine_run.h"
@@ -38,53 +39,119 @@ std::vector<int> screen_facets(const BspTree& tree, const ScreenScene& ss) {
 
 // The images of the tree's points in one view, made as fragments need them: an
 // input vertex's is its facet's corner (the very same numbers: the overlay then
-// knows it lies in the facet's plane without arithmetic); a split point's is
-// a' + t (b' - a') of its segment's images, lazily (a parallel projection is
-// affine: t is the world's), exact only if a predicate needs it.
+// knows it lies in the facet's plane without arithmetic). A split point a + t (b
+// - a) keeps t in homogeneous coordinates (the view is linear there): its image
+// is made from a's and b's, lazily, exact only if a predicate needs it. (In an
+// orthographic view W = 1: the screen point itself is a' + t (b' - a').)
 class Images {
  public:
-  explicit Images(const BspTree& tree) : tree_(tree), image_(tree.points.size()), made_(tree.points.size(), 0) {}
+  Images(const BspTree& tree, const Scene& scene, const View& view, int scale_exp)
+      : tree_(tree), scene_(scene), view_(view), scale_(std::ldexp(1.0, scale_exp)),
+        image_(tree.points.size()), h_(view.perspective ? tree.points.size() : 0), made_(tree.points.size(), 0) {}
 
+  // Whether point i is in front of the near plane (every point is, orthographically).
+  bool in_front(std::uint32_t i, const Facet& F) {
+    if (!view_.perspective) return true;
+    const BspTree::Point& p = tree_.points[i];
+    if (p.vertex >= 0) return F.has_vertex(p.vertex);   // (the facet keeps its corners in front)
+    const Homogeneous& h = homogeneous(i);
+    return CGAL::is_positive(h.Z) && CGAL::is_positive(h.W);
+  }
+
+  // The image of point i (in front).
   const P3& of(std::uint32_t i, const Facet& F) {
-    if (!made_[i]) {
-      const BspTree::Point& p = tree_.points[i];
-      if (p.vertex >= 0) {
-        image_[i] = F.v[static_cast<std::size_t>(std::find(F.id.begin(), F.id.end(), p.vertex) - F.id.begin())];
-      } else {
-        const P3 &a = of(p.a, F), &b = of(p.b, F);
-        const FT t(p.t);
-        image_[i] = P3{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)};
-      }
-      made_[i] = 1;
+    if (made_[i]) return image_[i];
+    const BspTree::Point& p = tree_.points[i];
+    if (p.vertex >= 0) {
+      image_[i] = F.v[static_cast<std::size_t>(std::find(F.id.begin(), F.id.end(), p.vertex) - F.id.begin())];
+    } else if (!view_.perspective) {
+      const P3 &a = of(p.a, F), &b = of(p.b, F);
+      const FT t(p.t);
+      image_[i] = P3{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)};
+    } else {
+      const Homogeneous& h = homogeneous(i);
+      image_[i] = P3{scale_ * h.X / h.W, scale_ * h.Y / h.W, scale_ * h.Z / h.W};
     }
+    made_[i] = 1;
     return image_[i];
   }
 
+  // The image of the point where segment u-v (one end in front, one not) meets
+  // the near plane Z = 0: depth 0 exactly, as the screen scene's cuts.
+  P3 near_cut(std::uint32_t u, std::uint32_t v) {
+    const Homogeneous &a = homogeneous(u), &b = homogeneous(v);
+    const FT r = a.Z / (a.Z - b.Z);
+    const FT X = a.X + r * (b.X - a.X), Y = a.Y + r * (b.Y - a.Y), W = a.W + r * (b.W - a.W);
+    return P3{scale_ * X / W, scale_ * Y / W, FT(0)};
+  }
+
  private:
+  struct Homogeneous {
+    FT X, Y, Z, W;
+  };
   const BspTree& tree_;
+  const Scene& scene_;
+  const View& view_;
+  FT scale_;
   std::vector<P3> image_;
+  std::vector<std::optional<Homogeneous>> h_;   // (perspective only)
   std::vector<char> made_;
+
+  const Homogeneous& homogeneous(std::uint32_t i) {
+    std::optional<Homogeneous>& h = h_[i];
+    if (h) return *h;
+    const BspTree::Point& p = tree_.points[i];
+    if (p.vertex >= 0) {
+      const Vec3& w = scene_.vertices[static_cast<std::size_t>(p.vertex)];
+      auto row = [&](int r) {
+        const auto& m = view_.m[static_cast<std::size_t>(r)];
+        return FT(m[0]) * FT(w.x) + FT(m[1]) * FT(w.y) + FT(m[2]) * FT(w.z) + FT(m[3]);
+      };
+      h = Homogeneous{row(0), row(1), row(2), row(3)};
+    } else {
+      const Homogeneous a = homogeneous(p.a), b = homogeneous(p.b);
+      const FT t(p.t);
+      h = Homogeneous{a.X + t * (b.X - a.X), a.Y + t * (b.Y - a.Y), a.Z + t * (b.Z - a.Z), a.W + t * (b.W - a.W)};
+    }
+    return *h;
+  }
 };
 
+// Fragment x of facet F on the screen: its corners in front of the near plane
+// and where its edges cross it, counter-clockwise; no two equal consecutive
+// points. Empty where nothing of it is left.
+std::vector<P3> screen_polygon(const BspTree::Fragment& x, const Facet& F, Images& images) {
+  std::vector<P3> v;
+  auto add = [&](const P3& q) {
+    if (v.empty() || !(v.back().xy() == q.xy())) v.push_back(q);
+  };
+  const std::size_t n = x.corners.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint32_t a = x.corners[k], b = x.corners[(k + 1) % n];
+    const bool fa = images.in_front(a, F), fb = images.in_front(b, F);
+    if (fa) add(images.of(a, F));
+    if (fa != fb) add(fa ? images.near_cut(a, b) : images.near_cut(b, a));
+  }
+  while (v.size() > 1 && v.front().xy() == v.back().xy()) v.pop_back();
+  if (v.size() < 3) v.clear();
+  if (F.facing == Facing::Back) std::reverse(v.begin(), v.end());   // counter-clockwise
+  return v;
+}
+
 // The tree's fragments in drawing order, on the screen: those of occluding
-// facets, counter-clockwise, as Newell's depth sort writes its own.
+// facets, as Newell's depth sort writes its own.
 std::vector<Fragment> fragments_in_order(const BspTree& tree, const Scene& scene, const View& view,
                                          const ScreenScene& ss) {
   const std::vector<int> screen = screen_facets(tree, ss);
-  Images images(tree);
+  Images images(tree, scene, view, ss.scale_exp);
   std::vector<Fragment> out;
   for (std::uint32_t xi : back_to_front(tree, scene, view)) {
     const BspTree::Fragment& x = tree.fragments[xi];
     const int fi = screen[x.facet];
     const Facet& F = ss.facets[static_cast<std::size_t>(fi)];
     if (!F.occluder) continue;
-    Fragment f{fi, F.face, {}, {}, {}};
-    for (std::uint32_t c : x.corners) {
-      const P3& q = images.of(c, F);
-      if (f.v.empty() || !(f.v.back().xy() == q.xy())) f.v.push_back(q);
-    }
-    while (f.v.size() > 1 && f.v.front().xy() == f.v.back().xy()) f.v.pop_back();
-    if (F.facing == Facing::Back) std::reverse(f.v.begin(), f.v.end());   // counter-clockwise
+    Fragment f{fi, F.face, screen_polygon(x, F, images), {}, {}};
+    if (f.v.empty()) continue;
     f.cut_on.assign(f.v.size(), -1);
     f.box = newell::box_of(f.v);
     out.push_back(std::move(f));
@@ -98,8 +165,6 @@ std::vector<Fragment> fragments_in_order(const BspTree& tree, const Scene& scene
 VisibilityMap visibility_bsp(const Scene& scene, const View& view, const Options& opt,
                              std::vector<PaintedFragment>* painter, const engine::BspTree* shared) {
   using namespace engine;
-  if (view.perspective)
-    throw std::invalid_argument("the BSP engine draws orthographic views only (a view direction, not an eye point)");
   VisibilityMap map = start_map(scene, view);
   Stats& st = map.stats;
   const exact::FilterCounts filter_before = exact::filter_counts;

@@ -290,8 +290,14 @@ std::vector<std::uint32_t> back_to_front(const BspTree& t, const Scene& scene, c
   std::vector<std::uint32_t> order;
   order.reserve(t.fragments.size());
   if (t.root < 0) return order;
-  // Depth grows along m[2] (larger is farther): the eye lies towards -m[2].
+  // Orthographically, depth grows along m[2] (larger is farther): the eye lies
+  // towards -m[2], at infinity. In perspective it is the point view.eye.
   const double toward_eye[3] = {-view.m[2][0], -view.m[2][1], -view.m[2][2]};
+  auto eye_side = [&](const BspTree::Node& node) {
+    if (!view.perspective) return normal_dot_sign(t, scene, node, toward_eye);
+    return world::orientation(scene.vertices[node.span[0]], scene.vertices[node.span[1]], scene.vertices[node.span[2]],
+                              view.eye);
+  };
   // Nodes to visit, and nodes whose own fragments are due (negative entries: ~node).
   std::vector<int> stack{t.root};
   std::vector<std::uint32_t> on;
@@ -310,7 +316,7 @@ std::vector<std::uint32_t> back_to_front(const BspTree& t, const Scene& scene, c
       continue;
     }
     const BspTree::Node& node = t.nodes[static_cast<std::size_t>(item)];
-    const bool eye_in_front = normal_dot_sign(t, scene, node, toward_eye) >= 0;
+    const bool eye_in_front = eye_side(node) >= 0;
     const int first = eye_in_front ? node.back : node.front, last = eye_in_front ? node.front : node.back;
     // (A stack: pushed in reverse.)
     if (last >= 0) stack.push_back(last);

@@ -51,7 +51,8 @@ struct BspTree {
 // Throws InputError as make_world_facets does.
 BspTree build_bsp_tree(const Scene& scene, int threads = 1);
 
-// The fragments in drawing order for an orthographic view (first drawn first):
+// The fragments in drawing order for a view (first drawn first), from the eye
+// point (perspective) or from infinity against the view direction:
 // for any two whose projections overlap in an open set, the later one is nearer
 // there, or at equal depth of a lower face index. Fragments in planes seen
 // edge-on come in any place (they hide nothing).

@@ -22,7 +22,7 @@ ViewSeries::ViewSeries(const Scene& scene, const Options& options) : scene_(scen
 ViewSeries::~ViewSeries() = default;
 
 VisibilityMap ViewSeries::map(const View& view, std::vector<PaintedFragment>* painter) {
-  if (options_.algorithm != Algorithm::Bsp || view.perspective) return compute_map(scene_, view, options_, painter);
+  if (options_.algorithm != Algorithm::Bsp) return compute_map(scene_, view, options_, painter);
   double built = 0;   // (the first view's stats count the tree's making)
   if (!tree_) {
     const auto t0 = std::chrono::steady_clock::now();

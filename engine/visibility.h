@@ -41,7 +41,7 @@ struct BspTree;   // (engine/bsp_tree.h)
 // The BSP engine: the scene's BSP tree (built once; `tree`, if given, is one
 // build_bsp_tree made for this scene, shared by several views) traversed from
 // the eye gives the drawing order; then Newell's overlay. The same map as the
-// other two. Orthographic views only (throws std::invalid_argument).
+// other two, in every view.
 VisibilityMap visibility_bsp(const Scene& scene, const View& view, const Options& options,
                              std::vector<PaintedFragment>* painter = nullptr,
                              const engine::BspTree* tree = nullptr);

@@ -2,7 +2,7 @@
 // built once, traversed per view, then Newell's overlay) against Franklin's and
 // the independent checker: the engines must write the same map (regions,
 // segments and hidden lines, byte for byte) on the degenerate corpus and on
-// seeded random scenes (the BSP engine in every orthographic view), the checker
+// seeded random scenes, the checker
 // must accept their maps, and the painter's fragments, painted back to front,
 // must show the map's face at every pixel centre away from edges.
 #include <gtest/gtest.h>
@@ -180,18 +180,13 @@ TEST_P(Corpus, NewellWritesFranklinsMap) {
   vismap_check::Options opt;
   opt.smooth = args.find("--smooth") != std::string::npos;
   expect_checked(vismap::read_scene(scene.string()), jn, opt, file + " (newell)");
-  // The BSP engine: the same map in an orthographic view; a perspective one is refused.
+  // The BSP engine: the same map.
   const fs::path bsp = dir / "bsp.json";
-  const std::string run_b = base + " --algorithm bsp --json '" + bsp.string() + "' 2>/dev/null";
-  if (args.find("--eye") == std::string::npos) {
-    ASSERT_EQ(std::system(run_b.c_str()), 0) << run_b;
-    const std::string jb = slurp(bsp);
-    EXPECT_EQ(without_stats(jb), without_stats(jn)) << file << ": the BSP engine's map differs";
-    expect_checked(vismap::read_scene(scene.string()), jb, opt, file + " (bsp)");
-  } else {
-    EXPECT_NE(std::system(run_b.c_str()), 0) << run_b << ": a perspective view, which the BSP engine refuses";
-    EXPECT_FALSE(fs::exists(bsp)) << run_b;
-  }
+  const std::string run_b = base + " --algorithm bsp --json '" + bsp.string() + "'";
+  ASSERT_EQ(std::system(run_b.c_str()), 0) << run_b;
+  const std::string jb = slurp(bsp);
+  EXPECT_EQ(without_stats(jb), without_stats(jn)) << file << ": the BSP engine's map differs";
+  expect_checked(vismap::read_scene(scene.string()), jb, opt, file + " (bsp)");
   const std::string svg = slurp(painter);
   EXPECT_EQ(svg.rfind("<svg", 0), 0u) << file;
   EXPECT_NE(svg.find("</svg>"), std::string::npos) << file;
@@ -220,9 +215,7 @@ TEST_P(Random, SameMapAsFranklinAndCheckerAccepts) {
   hidden.hidden = true;
   const std::string jn = map_json(vismap::visibility_newell(scene, view, hidden));
   EXPECT_EQ(jn, map_json(vismap::visibility_franklin(scene, view, hidden))) << what << ": the engines' maps differ";
-  if (!view.perspective) {
-    EXPECT_EQ(map_json(vismap::visibility_bsp(scene, view, hidden)), jn) << what << ": the BSP engine's map differs";
-  }
+  EXPECT_EQ(map_json(vismap::visibility_bsp(scene, view, hidden)), jn) << what << ": the BSP engine's map differs";
   EXPECT_NE(jn.find("\"hidden\""), std::string::npos) << what;
   vismap_check::Options opt;
   opt.samples = 1000;
@@ -250,9 +243,7 @@ TEST(Differential, ManySeeds) {
       hidden.hidden = true;
       const std::string jf = map_json(vismap::visibility_franklin(scene, view, hidden));
       EXPECT_EQ(map_json(vismap::visibility_newell(scene, view, hidden)), jf) << cases[c].name << " seed " << seed;
-      if (!view.perspective) {
-        EXPECT_EQ(map_json(vismap::visibility_bsp(scene, view, hidden)), jf) << cases[c].name << " seed " << seed << " (bsp)";
-      }
+      EXPECT_EQ(map_json(vismap::visibility_bsp(scene, view, hidden)), jf) << cases[c].name << " seed " << seed << " (bsp)";
     }
 }
 
@@ -308,31 +299,27 @@ TEST(Lattice, CheckerAcceptsNewellsMaps) {
       }
 }
 
-// One tree for many views: 12 directions around each scene (above, below and
-// level with it, faces seen edge-on among them), the tree built once; each
+// One tree for many views: 8 directions around each scene (above, below and
+// level with it, faces seen edge-on among them) and 8 eyes (inside the scene:
+// the near plane cuts fragments), the tree built once; each
 // view's map is the one-view run's, and Franklin's.
 TEST(Bsp, OneTreeServesEveryView) {
   for (const auto& rc : random_cases()) {
-    if (rc.camera.eye) continue;
     const vismap::Scene scene = rc.make(5);
     const vismap::engine::BspTree tree = vismap::engine::build_bsp_tree(scene);
     EXPECT_EQ(static_cast<std::int64_t>(tree.fragments.size() - tree.facets.facets.size()), tree.splits) << rc.name;
-    for (int k = 0; k < 12; ++k) {
-      const double a = 2 * std::acos(-1.0) * k / 12, elevation = k % 3 == 0 ? 0 : k % 3 == 1 ? 0.6 : -0.8;
-      const vismap::View view = vismap::make_view(ortho({std::cos(a), std::sin(a), elevation}), scene);
+    for (int k = 0; k < 16; ++k) {
+      const double a = 2 * std::acos(-1.0) * (k % 8) / 8 + 0.1 * k, elevation = k % 3 == 0 ? 0 : k % 3 == 1 ? 0.6 : -0.8;
+      const Vec3 d{std::cos(a), std::sin(a), elevation};
+      // Eyes 0.3 from the middle of the unit cube the scenes fill.
+      const double r = 0.3;
+      const vismap::Camera cam = k < 8 ? ortho(d) : persp({0.5 - r * d.x, 0.5 - r * d.y, 0.5 - r * d.z}, {0.5, 0.5, 0.5}, 70);
+      const vismap::View view = vismap::make_view(cam, scene);
       const std::string shared = map_json(vismap::visibility_bsp(scene, view, {}, nullptr, &tree));
       EXPECT_EQ(shared, map_json(vismap::visibility_bsp(scene, view, {}))) << rc.name << " view " << k;
       EXPECT_EQ(shared, map_json(vismap::visibility_franklin(scene, view, {}))) << rc.name << " view " << k;
     }
   }
-}
-
-// The BSP engine draws orthographic views only: a perspective view is refused
-// with a message, not drawn wrong.
-TEST(Bsp, PerspectiveIsRefused) {
-  const vismap::Scene scene = vismap::gen::random_triangles(5, 0.4, 1);
-  const vismap::View view = vismap::make_view(persp({1.5, 2.2, 1.7}, {0.5, 0.5, 0.5}, 60), scene);
-  EXPECT_THROW(vismap::visibility_bsp(scene, view, {}), std::invalid_argument);
 }
 
 bool has_segment(const vismap::VisibilityMap& m, const std::string& x0, const std::string& y0,
@@ -481,6 +468,8 @@ TEST(Painter, BackToFrontShowsTheMap) {
     expect_painter_matches_map(random_triangles(30, 0.5, seed), ortho({-1, -2, -1.5}), "bsp triangles" + s, true);
     expect_painter_matches_map(interpenetrating_boxes(4, seed), ortho({-1, -2, -1.5}), "bsp boxes" + s, true);
     expect_painter_matches_map(cyclic_sticks(seed), ortho({0, 0, -1}), "bsp cyclic sticks" + s, true);
+    expect_painter_matches_map(random_triangles(25, 0.4, seed), persp({1.5, 2.2, 1.7}, {0.5, 0.5, 0.5}, 60),
+                               "bsp triangles perspective" + s, true);
   }
 }
 

@@ -98,7 +98,7 @@ struct Camera {
   std::optional<Vec3> up;           // default 0,0,1 (0,1,0 when parallel to the view)
 };
 
-enum class Algorithm { Franklin, Newell, Bsp };   // all give the same map (Bsp: orthographic views)
+enum class Algorithm { Franklin, Newell, Bsp };   // all give the same map
 
 struct Options {
   double crease_deg = 30;   // dihedral angle above which a shared edge is a crease
