@@ -136,7 +136,11 @@ std::string to_off(const vismap::Scene& scene) {
 Engines engines_from_env() {
   const char* e = std::getenv("VISMAP_FUZZ_ENGINE");
   const std::string w = e ? e : "franklin";
-  return w == "both" ? Engines::Both : w == "newell" ? Engines::Newell : Engines::Franklin;
+  return w == "all"    ? Engines::All
+         : w == "both" ? Engines::Both
+         : w == "bsp"  ? Engines::Bsp
+         : w == "newell" ? Engines::Newell
+                         : Engines::Franklin;
 }
 
 void check_pipeline(const std::uint8_t* data, std::size_t size, Engines engines) {
@@ -147,12 +151,21 @@ void check_pipeline(const std::uint8_t* data, std::size_t size, Engines engines)
   } catch (const std::invalid_argument&) {
     return;  // an impossible camera (eye on the target): refused, as the CLI does
   }
-  const std::string which = engines == Engines::Both ? "both" : engines == Engines::Newell ? "newell" : "franklin";
+  auto runs = [&](const std::string& engine) {
+    switch (engines) {
+      case Engines::All: return true;
+      case Engines::Both: return engine != "bsp";
+      case Engines::Bsp: return engine == "bsp";
+      case Engines::Newell: return engine == "newell";
+      case Engines::Franklin: break;
+    }
+    return engine == "franklin";
+  };
   std::vector<std::pair<std::string, std::string>> maps;   // (engine, JSON)
-  for (const char* engine : {"franklin", "newell"}) {
-    if (which != "both" && which != engine) continue;
-    const bool newell = std::string(engine) == "newell";
-    const std::string algo = newell ? " --algorithm newell" : "";
+  for (const char* engine : {"franklin", "newell", "bsp"}) {
+    if (!runs(engine)) continue;
+    const bool franklin = std::string(engine) == "franklin";
+    const std::string algo = franklin ? "" : std::string(" --algorithm ") + engine;
     const std::string repro = "\n--- scene (fuzz.off) ---\n" + to_off(t.scene) + "--- command ---\nvismap fuzz.off " +
                               t.args + algo + " --json map.json && vismap verify fuzz.off map.json" +
                               (t.options.smooth ? " --smooth" : "") +
@@ -160,7 +173,9 @@ void check_pipeline(const std::uint8_t* data, std::size_t size, Engines engines)
     std::string json;
     try {
       vismap::Options o = t.options;
-      o.algorithm = newell ? vismap::Algorithm::Newell : vismap::Algorithm::Franklin;
+      o.algorithm = franklin ? vismap::Algorithm::Franklin
+                  : std::string(engine) == "newell" ? vismap::Algorithm::Newell
+                                                    : vismap::Algorithm::Bsp;
       vismap::VisibilityMap map = vismap::compute_map(t.scene, view, o);
       map.stats = {};
       json = vismap::to_json(map);
@@ -183,7 +198,7 @@ void check_pipeline(const std::uint8_t* data, std::size_t size, Engines engines)
       die(why + repro + (strict ? "(with --strict)\n" : ""));
     }
     maps.emplace_back(engine, json);
-    if (newell) continue;
+    if (!franklin) continue;
     // Franklin again with one option changed (`flag`, as the CLI spells it): its JSON.
     auto franklin_with = [&](const vismap::Options& o, const std::string& flag) {
       try {
@@ -209,9 +224,11 @@ void check_pipeline(const std::uint8_t* data, std::size_t size, Engines engines)
     if (segments(lines) != segments(json))
       die("--no-regions changed the segments" + repro + "(compare with --no-regions)\n");
   }
-  if (maps.size() == 2 && maps[0].second != maps[1].second)
-    die("the two engines' maps differ (both accepted by the checker)\n--- scene (fuzz.off) ---\n" + to_off(t.scene) +
-        "--- options ---\n" + t.args + "\n");
+  for (std::size_t k = 1; k < maps.size(); ++k)
+    if (maps[k].second != maps[0].second)
+      die("the " + maps[0].first + " and " + maps[k].first +
+          " engines' maps differ (both accepted by the checker)\n--- scene (fuzz.off) ---\n" + to_off(t.scene) +
+          "--- options ---\n" + t.args + "\n");
 }
 
 }  // namespace vismap_fuzz

@@ -41,11 +41,11 @@ std::string to_off(const vismap::Scene& scene);
 // Runs the whole pipeline (camera, engine, JSON) on decode_tiny(data) and has
 // the independent checker verify the map; aborts, printing the scene as OFF and
 // the command line, when the engine fails or the checker rejects its map. With
-// both engines, their maps must also be identical (the spec's canonical form).
-enum class Engines { Franklin, Newell, Both };
+// several engines, their maps must also be identical (the spec's canonical form).
+enum class Engines { Franklin, Newell, Bsp, Both, All };   // Both: Franklin and Newell; All: the three
 void check_pipeline(const std::uint8_t* data, std::size_t size, Engines engines);
 
-// VISMAP_FUZZ_ENGINE=franklin (default), newell or both.
+// VISMAP_FUZZ_ENGINE=franklin (default), newell, bsp, both (Franklin and Newell) or all.
 Engines engines_from_env();
 
 }  // namespace vismap_fuzz
