@@ -1,12 +1,13 @@
-// The BSP engine: the scene's BSP tree (bsp_tree.cpp), built once in world
-// space, gives the drawing order of a view; the fragments, projected exactly,
-// are then overlaid as Newell's engine overlays its own (newell_overlay.cpp).
-// One call per step.
+// The BSP engine: the scene's forest (bsp_forest.cpp: a BSP tree per group of
+// objects, and the planes that separate the groups), built once in world
+// space, gives the drawing order of a view: the groups by priority, each by its
+// tree; the fragments, projected exactly, are then overlaid as Newell's engine
+// overlays its own (newell_overlay.cpp). One call per step.
 
 #include <cmath>
 #include <optional>
 
-#include "engine/bsp_tree.h"
+#include "engine/bsp_forest.h"
 #include "engine/engine_run.h"
 #include "engine/newell_geometry.h"
 #include "engine/newell_overlay.h"
@@ -20,8 +21,8 @@ namespace {
 // Each world facet's screen facet. The screen scene's facets are the same
 // facets in screen order, which keeps the facets of one polygon in their order:
 // the k-th screen facet of face F is F's k-th world facet.
-std::vector<int> screen_facets(const BspTree& tree, const ScreenScene& ss) {
-  const auto& wf = tree.facets.facets;
+std::vector<int> screen_facets(const WorldFacets& world, const ScreenScene& ss) {
+  const auto& wf = world.facets;
   std::vector<std::uint32_t> first, seen;   // each face's first world facet, and how many were seen
   int faces = 0;
   for (const WorldFacet& w : wf) faces = std::max(faces, w.face + 1);
@@ -138,13 +139,25 @@ std::vector<P3> screen_polygon(const BspTree::Fragment& x, const Facet& F, Image
   return v;
 }
 
-// The tree's fragments in drawing order, on the screen: those of occluding
-// facets, as Newell's depth sort writes its own.
-std::vector<Fragment> fragments_in_order(const BspTree& tree, const Scene& scene, const View& view,
-                                         const ScreenScene& ss) {
-  const std::vector<int> screen = screen_facets(tree, ss);
+// Each group's bounds on the screen: its occluding facets' boxes (x0 > x1: none).
+std::vector<std::array<double, 4>> group_bounds(const BspForest& forest, const std::vector<int>& screen,
+                                                const ScreenScene& ss) {
+  std::vector<std::array<double, 4>> b(forest.groups.size(), {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL});
+  for (std::size_t w = 0; w < screen.size(); ++w) {
+    const Facet& F = ss.facets[static_cast<std::size_t>(screen[w])];
+    if (!F.occluder) continue;
+    auto& g = b[forest.group_of[w]];
+    g = {std::min(g[0], F.box.xmin()), std::min(g[1], F.box.ymin()), std::max(g[2], F.box.xmax()),
+         std::max(g[3], F.box.ymax())};
+  }
+  return b;
+}
+
+// One tree's fragments in drawing order, on the screen, appended to `out`:
+// those of occluding facets, as Newell's depth sort writes its own.
+void append_fragments(const BspTree& tree, const Scene& scene, const View& view, const ScreenScene& ss,
+                      const std::vector<int>& screen, std::vector<Fragment>& out) {
   Images images(tree, scene, view, ss.scale_exp);
-  std::vector<Fragment> out;
   for (std::uint32_t xi : back_to_front(tree, scene, view)) {
     const BspTree::Fragment& x = tree.fragments[xi];
     const int fi = screen[x.facet];
@@ -156,37 +169,63 @@ std::vector<Fragment> fragments_in_order(const BspTree& tree, const Scene& scene
     f.box = newell::box_of(f.v);
     out.push_back(std::move(f));
   }
+}
+
+// The forest's fragments in drawing order: the groups by priority, each by its tree.
+std::vector<Fragment> fragments_in_order(BspForest& forest, const Scene& scene, const View& view,
+                                         const ScreenScene& ss, Stats& stats) {
+  const std::vector<int> screen = screen_facets(*forest.facets, ss);
+  std::vector<Fragment> out;
+  for (const BspTree* tree : trees_back_to_front(forest, scene, view, group_bounds(forest, screen, ss), stats))
+    append_fragments(*tree, scene, view, ss, screen, out);
   return out;
+}
+
+// The forest's size: objects, groups, and their trees' fragments, splits, nodes
+// and depth (the circuits' trees made so far included).
+void count_forest(const BspForest& forest, Stats& st) {
+  std::int64_t fragments = 0, splits = 0, nodes = 0;
+  int depth = 0;
+  auto add = [&](const BspTree& t) {
+    fragments += static_cast<std::int64_t>(t.fragments.size());
+    splits += t.splits;
+    nodes += static_cast<std::int64_t>(t.nodes.size());
+    depth = std::max(depth, t.depth);
+  };
+  for (const BspTree& t : forest.trees) add(t);
+  st.count("bsp_objects", forest.objects);
+  st.count("bsp_groups", static_cast<std::int64_t>(forest.groups.size()));
+  st.count("bsp_fragments", fragments);
+  st.count("bsp_splits", splits);
+  st.count("bsp_nodes", nodes);
+  st.count("bsp_depth", depth);
 }
 
 }  // namespace
 }  // namespace engine
 
 VisibilityMap visibility_bsp(const Scene& scene, const View& view, const Options& opt,
-                             std::vector<PaintedFragment>* painter, const engine::BspTree* shared) {
+                             std::vector<PaintedFragment>* painter, engine::BspForest* shared) {
   using namespace engine;
   VisibilityMap map = start_map(scene, view);
   Stats& st = map.stats;
   const exact::FilterCounts filter_before = exact::filter_counts;
   PhaseClock clock;
 
-  // The tree: the caller's (built once for several views), or built now.
-  BspTree own;
-  if (!shared) own = build_bsp_tree(scene, opt.threads);
-  const BspTree& tree = shared ? *shared : own;
-  st.count("bsp_fragments", static_cast<std::int64_t>(tree.fragments.size()));
-  st.count("bsp_splits", tree.splits);
-  st.count("bsp_nodes", static_cast<std::int64_t>(tree.nodes.size()));
-  st.count("bsp_depth", tree.depth);
-  if (!shared) st.time("bsp_tree", clock.lap());   // (a shared tree's making is its maker's to count)
+  // The forest: the caller's (built once for several views), or built now.
+  BspForest own;
+  if (!shared) own = build_bsp_forest(scene, opt.threads);
+  BspForest& forest = shared ? *shared : own;
+  count_forest(forest, st);
+  if (!shared) st.time("bsp_tree", clock.lap());   // (a shared forest's making is its maker's to count)
   else clock.lap();
 
   // Transforming and initialising, as the other engines do.
   ScreenScene ss = make_screen_scene(scene, view, opt, st);
   st.time("project_and_cull", clock.lap());
 
-  // The drawing order: the tree traversed from the eye.
-  std::vector<Fragment> order = fragments_in_order(tree, scene, view, ss);
+  // The drawing order: the groups by priority, each tree traversed from the eye.
+  std::vector<Fragment> order = fragments_in_order(forest, scene, view, ss, st);
   st.count("fragments_written", static_cast<std::int64_t>(order.size()));
   st.time("order", clock.lap());
 

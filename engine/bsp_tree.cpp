@@ -42,12 +42,12 @@ class Builder {
  public:
   explicit Builder(const Scene& scene, BspTree& t) : scene_(scene), t_(t) {}
 
-  void run() {
+  void run(const std::vector<std::uint32_t>& facets) {
     std::vector<std::uint32_t> all;
-    for (std::uint32_t f = 0; f < t_.facets.facets.size(); ++f) {
+    for (std::uint32_t f : facets) {
       BspTree::Fragment x;
       x.facet = f;
-      for (auto id : t_.facets.facets[f].v) x.corners.push_back(point_of_vertex(id));
+      for (auto id : t_.facets->facets[f].v) x.corners.push_back(point_of_vertex(id));
       all.push_back(static_cast<std::uint32_t>(t_.fragments.size()));
       t_.fragments.push_back(std::move(x));
     }
@@ -162,7 +162,7 @@ class Builder {
 
   // Three corners of facet f that span its plane (a facet's corners are input vertices).
   std::array<std::uint32_t, 3> span_of(std::uint32_t f) const {
-    const auto& v = t_.facets.facets[f].v;
+    const auto& v = t_.facets->facets[f].v;
     if (v.size() == 3) return {v[0], v[1], v[2]};   // (facets are not degenerate)
     for (std::size_t j = 2; j < v.size(); ++j) {
       const auto n = world::normal_of<CGAL::Mpzf>(scene_.vertices[v[0]], scene_.vertices[v[1]], scene_.vertices[v[j]]);
@@ -261,10 +261,11 @@ class Builder {
   }
 };
 
-// sign(n . m): n the node plane's normal, m a direction in doubles. Intervals,
-// then binary floats (Mpzf: no gcd) where they cannot tell.
-int normal_dot_sign(const BspTree& t, const Scene& scene, const BspTree::Node& node, const double m[3]) {
-  const Vec3 &o = scene.vertices[node.span[0]], &a = scene.vertices[node.span[1]], &b = scene.vertices[node.span[2]];
+// sign(n . m): n the normal of the plane through o, a, b (input vertex ids), m a
+// direction in doubles. Intervals, then binary floats (Mpzf: no gcd) where they
+// cannot tell.
+int normal_dot_sign(const Scene& scene, const std::uint32_t span[3], const double m[3]) {
+  const Vec3 &o = scene.vertices[span[0]], &a = scene.vertices[span[1]], &b = scene.vertices[span[2]];
   {
     CGAL::Protect_FPU_rounding<true> upward;
     const auto n = world::normal_of<Interval>(o, a, b);
@@ -272,32 +273,39 @@ int normal_dot_sign(const BspTree& t, const Scene& scene, const BspTree::Node& n
     if (d.inf() > 0) return 1;
     if (d.sup() < 0) return -1;
   }
-  static_cast<void>(t);
   const auto n = world::normal_of<CGAL::Mpzf>(o, a, b);
   return (n[0] * CGAL::Mpzf(m[0]) + n[1] * CGAL::Mpzf(m[1]) + n[2] * CGAL::Mpzf(m[2])).sign();
 }
 
 }  // namespace
 
-BspTree build_bsp_tree(const Scene& scene, int threads) {
+BspTree build_bsp_tree(const Scene& scene, std::shared_ptr<const WorldFacets> wf,
+                       const std::vector<std::uint32_t>& facets) {
   BspTree t;
-  t.facets = make_world_facets(scene, threads);
-  Builder(scene, t).run();
+  t.facets = std::move(wf);
+  Builder(scene, t).run(facets);
   return t;
+}
+
+BspTree build_bsp_tree(const Scene& scene, int threads) {
+  auto wf = std::make_shared<const WorldFacets>(make_world_facets(scene, threads));
+  std::vector<std::uint32_t> all(wf->facets.size());
+  for (std::uint32_t f = 0; f < all.size(); ++f) all[f] = f;
+  return build_bsp_tree(scene, std::move(wf), all);
+}
+
+int eye_side(const Scene& scene, const std::uint32_t span[3], const View& view) {
+  if (view.perspective)
+    return world::orientation(scene.vertices[span[0]], scene.vertices[span[1]], scene.vertices[span[2]], view.eye);
+  // Depth grows along m[2] (larger is farther): the eye lies towards -m[2], at infinity.
+  const double toward_eye[3] = {-view.m[2][0], -view.m[2][1], -view.m[2][2]};
+  return normal_dot_sign(scene, span, toward_eye);
 }
 
 std::vector<std::uint32_t> back_to_front(const BspTree& t, const Scene& scene, const View& view) {
   std::vector<std::uint32_t> order;
   order.reserve(t.fragments.size());
   if (t.root < 0) return order;
-  // Orthographically, depth grows along m[2] (larger is farther): the eye lies
-  // towards -m[2], at infinity. In perspective it is the point view.eye.
-  const double toward_eye[3] = {-view.m[2][0], -view.m[2][1], -view.m[2][2]};
-  auto eye_side = [&](const BspTree::Node& node) {
-    if (!view.perspective) return normal_dot_sign(t, scene, node, toward_eye);
-    return world::orientation(scene.vertices[node.span[0]], scene.vertices[node.span[1]], scene.vertices[node.span[2]],
-                              view.eye);
-  };
   // Nodes to visit, and nodes whose own fragments are due (negative entries: ~node).
   std::vector<int> stack{t.root};
   std::vector<std::uint32_t> on;
@@ -309,14 +317,14 @@ std::vector<std::uint32_t> back_to_front(const BspTree& t, const Scene& scene, c
       // shows, so it is drawn later.
       on = t.nodes[static_cast<std::size_t>(~item)].on;
       std::sort(on.begin(), on.end(), [&](std::uint32_t x, std::uint32_t y) {
-        const int fx = t.facets.facets[t.fragments[x].facet].face, fy = t.facets.facets[t.fragments[y].facet].face;
+        const int fx = t.facets->facets[t.fragments[x].facet].face, fy = t.facets->facets[t.fragments[y].facet].face;
         return fx != fy ? fx > fy : x < y;
       });
       order.insert(order.end(), on.begin(), on.end());
       continue;
     }
     const BspTree::Node& node = t.nodes[static_cast<std::size_t>(item)];
-    const bool eye_in_front = eye_side(node) >= 0;
+    const bool eye_in_front = eye_side(scene, node.span, view) >= 0;
     const int first = eye_in_front ? node.back : node.front, last = eye_in_front ? node.front : node.back;
     // (A stack: pushed in reverse.)
     if (last >= 0) stack.push_back(last);

@@ -8,6 +8,7 @@
 #include <gmpxx.h>
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "engine/camera.h"
@@ -38,7 +39,7 @@ struct BspTree {
     int front = -1, back = -1;           // subtrees: the plane's positive and negative sides
   };
 
-  WorldFacets facets;   // the scene's facets, as every engine makes them
+  std::shared_ptr<const WorldFacets> facets;   // the scene's facets, as every engine makes them
   std::vector<Point> points;
   std::vector<Fragment> fragments;
   std::vector<Node> nodes;
@@ -51,11 +52,20 @@ struct BspTree {
 // Throws InputError as make_world_facets does.
 BspTree build_bsp_tree(const Scene& scene, int threads = 1);
 
+// The tree of some of the facets `wf` holds (indices in wf->facets).
+BspTree build_bsp_tree(const Scene& scene, std::shared_ptr<const WorldFacets> wf,
+                       const std::vector<std::uint32_t>& facets);
+
 // The fragments in drawing order for a view (first drawn first), from the eye
 // point (perspective) or from infinity against the view direction:
 // for any two whose projections overlap in an open set, the later one is nearer
 // there, or at equal depth of a lower face index. Fragments in planes seen
 // edge-on come in any place (they hide nothing).
 std::vector<std::uint32_t> back_to_front(const BspTree& tree, const Scene& scene, const View& view);
+
+// The side of the plane through three input vertices (ids) the eye is on: the
+// sign of orient3d with the eye point, or orthographically of n . (-d), d the
+// view direction (the eye at infinity). Exact.
+int eye_side(const Scene& scene, const std::uint32_t span[3], const View& view);
 
 }  // namespace vismap::engine

@@ -4,7 +4,7 @@
 
 #include <chrono>
 
-#include "engine/bsp_tree.h"
+#include "engine/bsp_forest.h"
 
 namespace vismap {
 
@@ -24,12 +24,12 @@ ViewSeries::~ViewSeries() = default;
 VisibilityMap ViewSeries::map(const View& view, std::vector<PaintedFragment>* painter) {
   if (options_.algorithm != Algorithm::Bsp) return compute_map(scene_, view, options_, painter);
   double built = 0;   // (the first view's stats count the tree's making)
-  if (!tree_) {
+  if (!forest_) {
     const auto t0 = std::chrono::steady_clock::now();
-    tree_ = std::make_unique<engine::BspTree>(engine::build_bsp_tree(scene_, options_.threads));
+    forest_ = std::make_unique<engine::BspForest>(engine::build_bsp_forest(scene_, options_.threads));
     built = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
-  VisibilityMap map = visibility_bsp(scene_, view, options_, painter, tree_.get());
+  VisibilityMap map = visibility_bsp(scene_, view, options_, painter, forest_.get());
   if (built > 0) map.stats.seconds.insert(map.stats.seconds.begin(), {"bsp_tree", built});
   return map;
 }

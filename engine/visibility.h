@@ -35,16 +35,17 @@ VisibilityMap visibility_newell(const Scene& scene, const View& view, const Opti
                                 std::vector<PaintedFragment>* painter = nullptr);
 
 namespace engine {
-struct BspTree;   // (engine/bsp_tree.h)
+struct BspForest;   // (engine/bsp_forest.h)
 }
 
-// The BSP engine: the scene's BSP tree (built once; `tree`, if given, is one
-// build_bsp_tree made for this scene, shared by several views) traversed from
-// the eye gives the drawing order; then Newell's overlay. The same map as the
-// other two, in every view.
+// The BSP engine: the scene's forest (a BSP tree per group of objects and the
+// planes that separate the groups, built once; `forest`, if given, is one
+// build_bsp_forest made for this scene, shared by several views, which keeps
+// the trees of cycles it meets) gives the drawing order from the eye; then
+// Newell's overlay. The same map as the other two, in every view.
 VisibilityMap visibility_bsp(const Scene& scene, const View& view, const Options& options,
                              std::vector<PaintedFragment>* painter = nullptr,
-                             const engine::BspTree* tree = nullptr);
+                             engine::BspForest* forest = nullptr);
 
 // The map by the engine options.algorithm names: the one place that dispatches
 // (the library's compute, the command line, the fuzz harness and the stability
@@ -53,7 +54,7 @@ VisibilityMap compute_map(const Scene& scene, const View& view, const Options& o
                           std::vector<PaintedFragment>* painter = nullptr);
 
 // Many views of one scene: what does not depend on the camera is made once (the
-// BSP engine's tree, on its first view), then each view's map, the same as
+// BSP engine's forest, on its first view), then each view's map, the same as
 // compute_map's for that view.
 class ViewSeries {
  public:
@@ -64,7 +65,7 @@ class ViewSeries {
  private:
   const Scene& scene_;
   Options options_;
-  std::unique_ptr<engine::BspTree> tree_;
+  std::unique_ptr<engine::BspForest> forest_;
 };
 
 }  // namespace vismap

@@ -17,7 +17,7 @@
 
 #include "arrangements/json_writer.h"
 #include "bench/scene_gen.h"
-#include "engine/bsp_tree.h"
+#include "engine/bsp_forest.h"
 #include "engine/visibility.h"
 #include "tests/test_support.h"
 
@@ -52,16 +52,19 @@ std::int64_t counted(const vismap::VisibilityMap& m, const std::string& name) {
 // ahead lies over the next (a cycle no order of whole faces can paint), each
 // rolled about its own axis at random, so that sometimes no stick crosses
 // another's plane (only a cut along a screen line can break the cycle) and
-// sometimes one does. Seen along -z.
-vismap::Scene cyclic_sticks(std::uint64_t seed) {
+// sometimes one does. Seen along -z. (`sticks` of them along the sides of a
+// regular polygon: a longer cycle, each crossing only its neighbours.)
+vismap::Scene cyclic_sticks(std::uint64_t seed, int sticks = 3) {
   vismap::gen::Rng rng(seed);
   vismap::Scene s;
   const double pi = std::acos(-1.0);
   const double phase = rng.uniform(0, 2 * pi);
-  for (int i = 0; i < 3; ++i) {
-    const double th = phase + 2 * pi * i / 3 + rng.uniform(-0.1, 0.1);
+  for (int i = 0; i < sticks; ++i) {
+    const double th = phase + 2 * pi * i / sticks + rng.uniform(-0.1, 0.1);
     const Vec3 u{std::cos(th), std::sin(th), 0}, n{-std::sin(th), std::cos(th), 0};
-    const double r = rng.uniform(0.25, 0.35), len = rng.uniform(0.9, 1.2), width = rng.uniform(0.05, 0.12);
+    const double r = rng.uniform(0.25, 0.35);
+    const double len = sticks == 3 ? rng.uniform(0.9, 1.2) : rng.uniform(1.5, 1.9) * r * std::tan(pi / sticks);
+    const double width = rng.uniform(0.05, 0.12);
     const double rise = -rng.uniform(0.2, 0.5), roll = rng.uniform(-2.0, 2.0), z0 = rng.uniform(-0.05, 0.05);
     const std::uint32_t b = static_cast<std::uint32_t>(s.vertices.size());
     for (double a : {-len, len})
@@ -141,7 +144,7 @@ std::vector<RandomCase> random_cases() {
       {"boxes", [](std::uint64_t s) { return interpenetrating_boxes(4, s); }, ortho({-1, -2, -1.5})},
       {"boxes_perspective", [](std::uint64_t s) { return interpenetrating_boxes(4, s); },
        persp({3, -4, 3.5}, {0, 0, 0}, 45)},
-      {"cyclic_sticks", cyclic_sticks, ortho({0, 0, -1})},
+      {"cyclic_sticks", [](std::uint64_t s) { return cyclic_sticks(s); }, ortho({0, 0, -1})},
       {"sticks_and_squares",
        [](std::uint64_t s) {
          vismap::Scene sc = cyclic_sticks(s);
@@ -261,10 +264,8 @@ TEST(Differential, CyclesAreSplit) {
     reorders += counted(n, "reorders");
     EXPECT_GT(counted(n, "fragments_written"), 3) << "seed " << seed << ": a cycle was painted unsplit";
     EXPECT_EQ(map_json(n), map_json(vismap::visibility_franklin(scene, view, {}))) << "sticks seed " << seed;
-    // The tree breaks the cycle too: some stick is cut by another's plane.
-    vismap::VisibilityMap b = vismap::visibility_bsp(scene, view, {});
-    EXPECT_GT(counted(b, "bsp_splits"), 0) << "sticks seed " << seed << ": a cycle was left in the tree";
-    EXPECT_EQ(map_json(b), map_json(n)) << "sticks seed " << seed << " (bsp)";
+    // The BSP engine breaks it too (Bsp.CyclesOfObjectsAreBroken says how).
+    EXPECT_EQ(map_json(vismap::visibility_bsp(scene, view, {})), map_json(n)) << "sticks seed " << seed << " (bsp)";
   }
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
     vismap::Scene scene = vismap::gen::random_triangles(12, 0.8, seed);
@@ -306,8 +307,14 @@ TEST(Lattice, CheckerAcceptsNewellsMaps) {
 TEST(Bsp, OneTreeServesEveryView) {
   for (const auto& rc : random_cases()) {
     const vismap::Scene scene = rc.make(5);
-    const vismap::engine::BspTree tree = vismap::engine::build_bsp_tree(scene);
-    EXPECT_EQ(static_cast<std::int64_t>(tree.fragments.size() - tree.facets.facets.size()), tree.splits) << rc.name;
+    vismap::engine::BspForest forest = vismap::engine::build_bsp_forest(scene);
+    std::size_t facets = 0;
+    for (std::size_t g = 0; g < forest.groups.size(); ++g) {
+      facets += forest.groups[g].size();
+      const auto& t = forest.trees[g];
+      EXPECT_EQ(static_cast<std::int64_t>(t.fragments.size() - forest.groups[g].size()), t.splits) << rc.name;
+    }
+    EXPECT_EQ(facets, forest.facets->facets.size()) << rc.name << ": every facet in one group";
     for (int k = 0; k < 16; ++k) {
       const double a = 2 * std::acos(-1.0) * (k % 8) / 8 + 0.1 * k, elevation = k % 3 == 0 ? 0 : k % 3 == 1 ? 0.6 : -0.8;
       const Vec3 d{std::cos(a), std::sin(a), elevation};
@@ -315,11 +322,44 @@ TEST(Bsp, OneTreeServesEveryView) {
       const double r = 0.3;
       const vismap::Camera cam = k < 8 ? ortho(d) : persp({0.5 - r * d.x, 0.5 - r * d.y, 0.5 - r * d.z}, {0.5, 0.5, 0.5}, 70);
       const vismap::View view = vismap::make_view(cam, scene);
-      const std::string shared = map_json(vismap::visibility_bsp(scene, view, {}, nullptr, &tree));
+      const std::string shared = map_json(vismap::visibility_bsp(scene, view, {}, nullptr, &forest));
       EXPECT_EQ(shared, map_json(vismap::visibility_bsp(scene, view, {}))) << rc.name << " view " << k;
       EXPECT_EQ(shared, map_json(vismap::visibility_franklin(scene, view, {}))) << rc.name << " view " << k;
     }
   }
+}
+
+// Tomlinson's priority over objects: rings of 3, 4 and 5 sticks, each stick an
+// object, each over the next where they cross (a cycle of priorities no order
+// of whole objects paints). The cycle is found, either in a view (a circuit:
+// its objects drawn by one tree of their union, made once and kept for later
+// views) or in preprocessing (no plane separates two of them: one group), and
+// the map is Franklin's.
+TEST(Bsp, CyclesOfObjectsAreBroken) {
+  std::int64_t circuits = 0;
+  for (int sticks : {3, 4, 5})
+    for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+      const std::string what = std::to_string(sticks) + " sticks, seed " + std::to_string(seed);
+      const vismap::Scene scene = cyclic_sticks(seed, sticks);
+      const vismap::View view = vismap::make_view(ortho({0, 0, -1}), scene);
+      vismap::engine::BspForest forest = vismap::engine::build_bsp_forest(scene);
+      EXPECT_EQ(forest.objects, sticks) << what;
+      const vismap::VisibilityMap m = vismap::visibility_bsp(scene, view, {}, nullptr, &forest);
+      const std::int64_t found = counted(m, "priority_circuits");
+      EXPECT_TRUE(found > 0 || counted(m, "bsp_groups") < sticks) << what << ": a cycle was drawn unbroken";
+      EXPECT_EQ(map_json(m), map_json(vismap::visibility_franklin(scene, view, {}))) << what;
+      circuits += found;
+      // Another view of the same forest: the circuit's tree is not made again.
+      const std::size_t trees = forest.circuits.size();
+      const vismap::View tilted = vismap::make_view(ortho({0.05, -0.03, -1}), scene);
+      EXPECT_EQ(map_json(vismap::visibility_bsp(scene, tilted, {}, nullptr, &forest)),
+                map_json(vismap::visibility_franklin(scene, tilted, {})))
+          << what << " (tilted)";
+      if (found > 0) {
+        EXPECT_EQ(forest.circuits.size(), trees) << what;
+      }
+    }
+  EXPECT_GT(circuits, 0) << "no cycle was found by the priorities (all were groups)";
 }
 
 bool has_segment(const vismap::VisibilityMap& m, const std::string& x0, const std::string& y0,

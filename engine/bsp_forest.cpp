@@ -1,0 +1,420 @@
+#include "engine/bsp_forest.h"
+
+#include <algorithm>
+#include <numeric>
+#include <queue>
+
+#include <CGAL/FPU.h>
+#include <CGAL/Interval_nt.h>
+#include <CGAL/Mpzf.h>
+
+#include "engine/union_find.h"
+#include "engine/world_exact.h"
+
+namespace vismap::engine {
+namespace {
+
+using Box = std::array<double, 6>;
+
+bool boxes_meet(const Box& a, const Box& b) {
+  for (int k = 0; k < 3; ++k)
+    if (a[k + 3] < b[k] || b[k + 3] < a[k]) return false;
+  return true;
+}
+
+// Facets joined where they share a vertex: the scene's objects, numbered by
+// their first facet.
+std::vector<std::vector<std::uint32_t>> objects_of(const WorldFacets& wf, std::size_t nvertices) {
+  const auto n = wf.facets.size();
+  UnionFind uf(n);
+  std::vector<std::int64_t> first(nvertices, -1);
+  for (std::size_t f = 0; f < n; ++f)
+    for (auto id : wf.facets[f].v) {
+      if (first[id] < 0) first[id] = static_cast<std::int64_t>(f);
+      else uf.join(static_cast<int>(first[id]), static_cast<int>(f));
+    }
+  std::vector<int> number(n, -1);
+  std::vector<std::vector<std::uint32_t>> out;
+  for (std::size_t f = 0; f < n; ++f) {
+    const int r = uf.find(static_cast<int>(f));
+    if (number[r] < 0) {
+      number[r] = static_cast<int>(out.size());
+      out.emplace_back();
+    }
+    out[static_cast<std::size_t>(number[r])].push_back(static_cast<std::uint32_t>(f));
+  }
+  return out;
+}
+
+class ForestBuilder {
+ public:
+  ForestBuilder(const Scene& scene, BspForest& forest) : scene_(scene), f_(forest) {}
+
+  // Groups merged until every two whose boxes meet have a separating plane.
+  void group() {
+    f_.groups = objects_of(*f_.facets, scene_.vertices.size());
+    f_.objects = static_cast<std::int64_t>(f_.groups.size());
+    for (;;) {
+      boxes();
+      f_.meeting.clear();
+      UnionFind uf(f_.groups.size());
+      bool merged = false;
+      for (const auto& [g, h] : meeting_pairs()) {
+        Separation s;
+        if (separate(g, h, s)) f_.meeting[{g, h}] = s;
+        else {
+          uf.join(g, h);
+          merged = true;
+        }
+      }
+      if (!merged) return;
+      merge(uf);
+    }
+  }
+
+  void plant() {
+    f_.group_of.assign(f_.facets->facets.size(), 0);
+    for (std::size_t g = 0; g < f_.groups.size(); ++g) {
+      for (auto fi : f_.groups[g]) f_.group_of[fi] = static_cast<std::uint32_t>(g);
+      f_.trees.push_back(build_bsp_tree(scene_, f_.facets, f_.groups[g]));
+    }
+  }
+
+ private:
+  const Scene& scene_;
+  BspForest& f_;
+  std::vector<std::vector<std::uint32_t>> vertices_;   // each group's vertex ids
+
+  void boxes() {
+    f_.box.assign(f_.groups.size(), Box{HUGE_VAL, HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL, -HUGE_VAL});
+    vertices_.assign(f_.groups.size(), {});
+    for (std::size_t g = 0; g < f_.groups.size(); ++g) {
+      auto& vs = vertices_[g];
+      for (auto fi : f_.groups[g])
+        for (auto id : f_.facets->facets[fi].v) vs.push_back(id);
+      std::sort(vs.begin(), vs.end());
+      vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
+      Box& b = f_.box[g];
+      for (auto id : vs) {
+        const Vec3& p = scene_.vertices[id];
+        const double c[3] = {p.x, p.y, p.z};
+        for (int k = 0; k < 3; ++k) {
+          b[k] = std::min(b[k], c[k]);
+          b[k + 3] = std::max(b[k + 3], c[k]);
+        }
+      }
+    }
+  }
+
+  // Pairs g < h whose boxes meet (closed), by a sweep along x.
+  std::vector<std::pair<int, int>> meeting_pairs() const {
+    std::vector<int> by_x(f_.groups.size());
+    std::iota(by_x.begin(), by_x.end(), 0);
+    std::sort(by_x.begin(), by_x.end(), [&](int a, int b) { return f_.box[a][0] < f_.box[b][0] || (f_.box[a][0] == f_.box[b][0] && a < b); });
+    std::vector<std::pair<int, int>> out;
+    for (std::size_t i = 0; i < by_x.size(); ++i)
+      for (std::size_t j = i + 1; j < by_x.size() && f_.box[by_x[j]][0] <= f_.box[by_x[i]][3]; ++j)
+        if (boxes_meet(f_.box[by_x[i]], f_.box[by_x[j]]))
+          out.emplace_back(std::min(by_x[i], by_x[j]), std::max(by_x[i], by_x[j]));
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+
+  // A plane with g on one closed side and h strictly on the other (or the
+  // reverse): a facet plane of either, else a plane through an edge of one
+  // parallel to an edge of the other (for groups of few edges).
+  bool separate(int g, int h, Separation& s) const {
+    for (int owner : {g, h})
+      for (auto fi : f_.groups[static_cast<std::size_t>(owner)]) {
+        const std::array<std::uint32_t, 3> span = spanning(f_.facets->facets[fi].v);
+        s.ids = {span[0], span[1], span[0], span[2]};
+        if (splits(g, h, s)) return true;
+      }
+    const auto eg = edges(g), eh = edges(h);
+    if (eg.size() * eh.size() > 4096) return false;   // (left to one group's tree)
+    for (const auto& a : eg)
+      for (const auto& b : eh) {
+        s.ids = {a[0], a[1], b[0], b[1]};
+        if (!parallel(s) && splits(g, h, s)) return true;
+      }
+    return false;
+  }
+
+  // Whether the plane s.ids has one group on a closed side and the other
+  // strictly on the other; then s.first_side is g's side.
+  bool splits(int g, int h, Separation& s) const {
+    s.axis = -1;
+    const int sg = sides(g, s), sh = sides(h, s);
+    // (sides: bit 1 positive, bit 2 negative; 4 a vertex in the plane)
+    auto closed = [](int x, int bit) { return (x & 3) == bit || (x & 3) == 0; };
+    auto strict = [](int x, int bit) { return (x & 3) == bit && !(x & 4); };
+    for (int bit : {1, 2}) {
+      const int other = 3 - bit;
+      if ((closed(sg, bit) && strict(sh, other)) || (strict(sg, bit) && closed(sh, other))) {
+        s.first_side = bit == 1 ? 1 : -1;
+        return true;
+      }
+    }
+    return false;
+  }
+
+  // Edges p-q parallel to r-s give no plane.
+  bool parallel(const Separation& s) const {
+    const Vec3 &p = scene_.vertices[s.ids[0]], &q = scene_.vertices[s.ids[1]];
+    const Vec3 &r = scene_.vertices[s.ids[2]], &t = scene_.vertices[s.ids[3]];
+    const Vec3 o{0, 0, 0}, u{q.x - p.x, q.y - p.y, q.z - p.z}, v{t.x - r.x, t.y - r.y, t.z - r.z};
+    // (the differences may round: this only skips a candidate, the sides below are exact)
+    const auto n = world::normal_of<CGAL::Mpzf>(o, u, v);
+    return n[0].sign() == 0 && n[1].sign() == 0 && n[2].sign() == 0;
+  }
+
+  // The group's edges (vertex id pairs, each once).
+  std::vector<std::array<std::uint32_t, 2>> edges(int g) const {
+    std::vector<std::array<std::uint32_t, 2>> out;
+    for (auto fi : f_.groups[static_cast<std::size_t>(g)]) {
+      const auto& v = f_.facets->facets[fi].v;
+      for (std::size_t k = 0; k < v.size(); ++k)
+        out.push_back({std::min(v[k], v[(k + 1) % v.size()]), std::max(v[k], v[(k + 1) % v.size()])});
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
+  std::array<std::uint32_t, 3> spanning(const SmallVec<std::uint32_t, 4>& v) const {
+    for (std::size_t j = 2; j < v.size(); ++j) {
+      const auto n = world::normal_of<CGAL::Mpzf>(scene_.vertices[v[0]], scene_.vertices[v[1]], scene_.vertices[v[j]]);
+      if (n[0].sign() != 0 || n[1].sign() != 0 || n[2].sign() != 0) return {v[0], v[1], v[j]};
+    }
+    return {v[0], v[1], v[2]};
+  }
+
+  int sides(int g, const Separation& plane) const {
+    int s = 0;
+    for (auto id : vertices_[static_cast<std::size_t>(g)]) {
+      const int o3 = plane_side(scene_, plane, scene_.vertices[id]);
+      s |= o3 > 0 ? 1 : o3 < 0 ? 2 : 4;
+      if ((s & 3) == 3) break;
+    }
+    return s;
+  }
+
+  void merge(UnionFind& uf) {
+    std::vector<int> number(f_.groups.size(), -1);
+    std::vector<std::vector<std::uint32_t>> out;
+    for (std::size_t g = 0; g < f_.groups.size(); ++g) {
+      const int r = uf.find(static_cast<int>(g));
+      if (number[r] < 0) {
+        number[r] = static_cast<int>(out.size());
+        out.emplace_back();
+      }
+      auto& m = out[static_cast<std::size_t>(number[r])];
+      m.insert(m.end(), f_.groups[g].begin(), f_.groups[g].end());
+    }
+    for (auto& m : out) std::sort(m.begin(), m.end());
+    f_.groups = std::move(out);
+  }
+};
+
+// The plane between groups g < h whose boxes do not meet: an axis plane at the
+// end of one box, the other strictly beyond.
+Separation axis_separation(const Box& g, const Box& h) {
+  Separation s;
+  for (int k = 0; k < 3; ++k) {
+    s.axis = k;
+    if (g[k + 3] < h[k]) {   // g at or below c = g's top, h strictly above
+      s.c = g[k + 3];
+      s.first_side = -1;
+      return s;
+    }
+    if (h[k + 3] < g[k]) {
+      s.c = h[k + 3];
+      s.first_side = 1;
+      return s;
+    }
+  }
+  s.axis = -2;   // (not reached: the boxes meet)
+  return s;
+}
+
+// sign(det(u, v, w)) of differences of doubles: intervals, then binary floats
+// (Mpzf, exact: no gcd) where they cannot tell.
+template <class N>
+N det_of(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s, const double w[3]) {
+  const N ux = N(q.x) - N(p.x), uy = N(q.y) - N(p.y), uz = N(q.z) - N(p.z);
+  const N vx = N(s.x) - N(r.x), vy = N(s.y) - N(r.y), vz = N(s.z) - N(r.z);
+  return (uy * vz - uz * vy) * N(w[0]) + (uz * vx - ux * vz) * N(w[1]) + (ux * vy - uy * vx) * N(w[2]);
+}
+
+int separation_sign(const Scene& scene, const Separation& s, const double w[3]) {
+  const Vec3 &p = scene.vertices[s.ids[0]], &q = scene.vertices[s.ids[1]];
+  const Vec3 &r = scene.vertices[s.ids[2]], &t = scene.vertices[s.ids[3]];
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const CGAL::Interval_nt<false> d = det_of<CGAL::Interval_nt<false>>(p, q, r, t, w);
+    if (d.inf() > 0) return 1;
+    if (d.sup() < 0) return -1;
+  }
+  return det_of<CGAL::Mpzf>(p, q, r, t, w).sign();
+}
+
+// The side of the separating plane the eye is on (0: in it).
+int eye_side_of(const Separation& s, const Scene& scene, const View& view) {
+  if (s.axis < 0) {
+    if (view.perspective) return plane_side(scene, s, view.eye);
+    const double toward_eye[3] = {-view.m[2][0], -view.m[2][1], -view.m[2][2]};
+    return separation_sign(scene, s, toward_eye);
+  }
+  if (view.perspective) {
+    const double e[3] = {view.eye.x, view.eye.y, view.eye.z};
+    return (e[s.axis] > s.c) - (e[s.axis] < s.c);
+  }
+  const double toward_eye = -view.m[2][static_cast<std::size_t>(s.axis)];
+  return (toward_eye > 0) - (toward_eye < 0);
+}
+
+// Strongly connected components of a graph (iterative Tarjan): comp[v], and
+// the number of components.
+int components(const std::vector<std::vector<int>>& next, std::vector<int>& comp) {
+  const int n = static_cast<int>(next.size());
+  comp.assign(static_cast<std::size_t>(n), -1);
+  std::vector<int> index(static_cast<std::size_t>(n), -1), low(static_cast<std::size_t>(n), 0), stack;
+  std::vector<char> on(static_cast<std::size_t>(n), 0);
+  int counter = 0, count = 0;
+  std::vector<std::pair<int, std::size_t>> call;
+  for (int s = 0; s < n; ++s) {
+    if (index[s] >= 0) continue;
+    call.push_back({s, 0});
+    while (!call.empty()) {
+      auto& [v, i] = call.back();
+      if (i == 0) {
+        index[v] = low[v] = counter++;
+        stack.push_back(v);
+        on[v] = 1;
+      }
+      if (i < next[v].size()) {
+        const int w = next[v][i++];
+        if (index[w] < 0) call.push_back({w, 0});
+        else if (on[w]) low[v] = std::min(low[v], index[w]);
+        continue;
+      }
+      if (low[v] == index[v]) {
+        for (;;) {
+          const int w = stack.back();
+          stack.pop_back();
+          on[w] = 0;
+          comp[w] = count;
+          if (w == v) break;
+        }
+        ++count;
+      }
+      const int done = v;
+      call.pop_back();
+      if (!call.empty()) low[call.back().first] = std::min(low[call.back().first], low[done]);
+    }
+  }
+  return count;
+}
+
+}  // namespace
+
+int plane_side(const Scene& scene, const Separation& s, const Vec3& x) {
+  // det(q - p, s - r, x - p): x - p is a difference of doubles too, exact in Mpzf.
+  const Vec3& p = scene.vertices[s.ids[0]];
+  const Vec3 &q = scene.vertices[s.ids[1]], &r = scene.vertices[s.ids[2]], &t = scene.vertices[s.ids[3]];
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    using I = CGAL::Interval_nt<false>;
+    const I wx = I(x.x) - I(p.x), wy = I(x.y) - I(p.y), wz = I(x.z) - I(p.z);
+    const I ux = I(q.x) - I(p.x), uy = I(q.y) - I(p.y), uz = I(q.z) - I(p.z);
+    const I vx = I(t.x) - I(r.x), vy = I(t.y) - I(r.y), vz = I(t.z) - I(r.z);
+    const I d = (uy * vz - uz * vy) * wx + (uz * vx - ux * vz) * wy + (ux * vy - uy * vx) * wz;
+    if (d.inf() > 0) return 1;
+    if (d.sup() < 0) return -1;
+  }
+  using M = CGAL::Mpzf;
+  const M wx = M(x.x) - M(p.x), wy = M(x.y) - M(p.y), wz = M(x.z) - M(p.z);
+  const M ux = M(q.x) - M(p.x), uy = M(q.y) - M(p.y), uz = M(q.z) - M(p.z);
+  const M vx = M(t.x) - M(r.x), vy = M(t.y) - M(r.y), vz = M(t.z) - M(r.z);
+  return ((uy * vz - uz * vy) * wx + (uz * vx - ux * vz) * wy + (ux * vy - uy * vx) * wz).sign();
+}
+
+BspForest build_bsp_forest(const Scene& scene, int threads) {
+  BspForest forest;
+  forest.facets = std::make_shared<const WorldFacets>(make_world_facets(scene, threads));
+  ForestBuilder b(scene, forest);
+  b.group();
+  b.plant();
+  return forest;
+}
+
+std::vector<const BspTree*> trees_back_to_front(BspForest& forest, const Scene& scene, const View& view,
+                                                const std::vector<std::array<double, 4>>& screen, Stats& stats) {
+  const int n = static_cast<int>(forest.groups.size());
+  // Groups whose screen bounds overlap, ordered by their plane: edges from the
+  // group drawn first to the one drawn after.
+  std::vector<int> shown;
+  for (int g = 0; g < n; ++g)
+    if (screen[static_cast<std::size_t>(g)][0] <= screen[static_cast<std::size_t>(g)][2]) shown.push_back(g);
+  std::sort(shown.begin(), shown.end(), [&](int a, int b) { return screen[a][0] < screen[b][0] || (screen[a][0] == screen[b][0] && a < b); });
+  std::vector<std::vector<int>> next(static_cast<std::size_t>(n));
+  std::int64_t pairs = 0;
+  for (std::size_t i = 0; i < shown.size(); ++i)
+    for (std::size_t j = i + 1; j < shown.size() && screen[shown[j]][0] <= screen[shown[i]][2]; ++j) {
+      const int g = std::min(shown[i], shown[j]), h = std::max(shown[i], shown[j]);
+      if (screen[g][3] < screen[h][1] || screen[h][3] < screen[g][1]) continue;
+      ++pairs;
+      const auto met = forest.meeting.find({g, h});
+      const Separation s = met != forest.meeting.end() ? met->second : axis_separation(forest.box[g], forest.box[h]);
+      const int e = eye_side_of(s, scene, view);
+      if (e == 0) continue;   // (the eye in the plane: their projections only touch)
+      // The group on the eye's side is drawn after the other.
+      if (e == s.first_side) next[static_cast<std::size_t>(h)].push_back(g);
+      else next[static_cast<std::size_t>(g)].push_back(h);
+    }
+  stats.count("priority_pairs", pairs);
+  // Cycles: their groups drawn together; the order of the rest from the graph of
+  // components (Kahn's, the lowest-numbered first among the ready: deterministic).
+  std::vector<int> comp;
+  const int nc = components(next, comp);
+  std::vector<std::vector<int>> members(static_cast<std::size_t>(nc));
+  for (int g = 0; g < n; ++g) members[static_cast<std::size_t>(comp[g])].push_back(g);
+  std::vector<std::vector<int>> after(static_cast<std::size_t>(nc));
+  std::vector<int> before(static_cast<std::size_t>(nc), 0);
+  for (int g = 0; g < n; ++g)
+    for (int h : next[static_cast<std::size_t>(g)])
+      if (comp[g] != comp[h]) {
+        after[static_cast<std::size_t>(comp[g])].push_back(comp[h]);
+        ++before[static_cast<std::size_t>(comp[h])];
+      }
+  std::priority_queue<std::pair<int, int>, std::vector<std::pair<int, int>>, std::greater<>> ready;   // (first group, comp)
+  for (int c = 0; c < nc; ++c)
+    if (before[static_cast<std::size_t>(c)] == 0) ready.push({members[static_cast<std::size_t>(c)][0], c});
+  std::vector<const BspTree*> out;
+  std::int64_t circuits = 0;
+  while (!ready.empty()) {
+    const int c = ready.top().second;
+    ready.pop();
+    const std::vector<int>& m = members[static_cast<std::size_t>(c)];
+    if (m.size() == 1) {
+      out.push_back(&forest.trees[static_cast<std::size_t>(m[0])]);
+    } else {
+      ++circuits;
+      auto it = forest.circuits.find(m);
+      if (it == forest.circuits.end()) {
+        std::vector<std::uint32_t> facets;
+        for (int g : m) facets.insert(facets.end(), forest.groups[static_cast<std::size_t>(g)].begin(),
+                                      forest.groups[static_cast<std::size_t>(g)].end());
+        std::sort(facets.begin(), facets.end());
+        it = forest.circuits.emplace(m, build_bsp_tree(scene, forest.facets, facets)).first;
+      }
+      out.push_back(&it->second);
+    }
+    for (int d : after[static_cast<std::size_t>(c)])
+      if (--before[static_cast<std::size_t>(d)] == 0) ready.push({members[static_cast<std::size_t>(d)][0], d});
+  }
+  stats.count("priority_circuits", circuits);
+  return out;
+}
+
+}  // namespace vismap::engine
