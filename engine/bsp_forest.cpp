@@ -237,40 +237,14 @@ Separation axis_separation(const Box& g, const Box& h) {
   return s;
 }
 
-// sign(det(u, v, w)) of differences of doubles: intervals, then binary floats
-// (Mpzf, exact: no gcd) where they cannot tell.
-template <class N>
-N det_of(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s, const double w[3]) {
-  const N ux = N(q.x) - N(p.x), uy = N(q.y) - N(p.y), uz = N(q.z) - N(p.z);
-  const N vx = N(s.x) - N(r.x), vy = N(s.y) - N(r.y), vz = N(s.z) - N(r.z);
-  return (uy * vz - uz * vy) * N(w[0]) + (uz * vx - ux * vz) * N(w[1]) + (ux * vy - uy * vx) * N(w[2]);
-}
-
-int separation_sign(const Scene& scene, const Separation& s, const double w[3]) {
-  const Vec3 &p = scene.vertices[s.ids[0]], &q = scene.vertices[s.ids[1]];
-  const Vec3 &r = scene.vertices[s.ids[2]], &t = scene.vertices[s.ids[3]];
-  {
-    CGAL::Protect_FPU_rounding<true> upward;
-    const CGAL::Interval_nt<false> d = det_of<CGAL::Interval_nt<false>>(p, q, r, t, w);
-    if (d.inf() > 0) return 1;
-    if (d.sup() < 0) return -1;
-  }
-  return det_of<CGAL::Mpzf>(p, q, r, t, w).sign();
-}
-
-// The side of the separating plane the eye is on (0: in it).
-int eye_side_of(const Separation& s, const Scene& scene, const View& view) {
+// The side of the separating plane the eye is on (0: in it), exactly.
+int eye_side_of(const Separation& s, const Scene& scene, const Eye& eye) {
   if (s.axis < 0) {
-    if (view.perspective) return plane_side(scene, s, view.eye);
-    const double toward_eye[3] = {-view.m[2][0], -view.m[2][1], -view.m[2][2]};
-    return separation_sign(scene, s, toward_eye);
+    const auto& v = scene.vertices;
+    return eye_side(v[s.ids[0]], v[s.ids[1]], v[s.ids[2]], v[s.ids[3]], eye);
   }
-  if (view.perspective) {
-    const double e[3] = {view.eye.x, view.eye.y, view.eye.z};
-    return (e[s.axis] > s.c) - (e[s.axis] < s.c);
-  }
-  const double toward_eye = -view.m[2][static_cast<std::size_t>(s.axis)];
-  return (toward_eye > 0) - (toward_eye < 0);
+  // x_axis - c at the eye (x, y, z, w): the sign of h[axis] - w c.
+  return sgn(eye.h[static_cast<std::size_t>(s.axis)] - eye.h[3] * mpq_class(s.c));
 }
 
 // Strongly connected components of a graph (iterative Tarjan): comp[v], and
@@ -351,6 +325,7 @@ BspForest build_bsp_forest(const Scene& scene, int threads) {
 std::vector<const BspTree*> trees_back_to_front(BspForest& forest, const Scene& scene, const View& view,
                                                 const std::vector<std::array<double, 4>>& screen, Stats& stats) {
   const int n = static_cast<int>(forest.groups.size());
+  const Eye eye = eye_of(view);
   // Groups whose screen bounds overlap, ordered by their plane: edges from the
   // group drawn first to the one drawn after.
   std::vector<int> shown;
@@ -366,7 +341,7 @@ std::vector<const BspTree*> trees_back_to_front(BspForest& forest, const Scene& 
       ++pairs;
       const auto met = forest.meeting.find({g, h});
       const Separation s = met != forest.meeting.end() ? met->second : axis_separation(forest.box[g], forest.box[h]);
-      const int e = eye_side_of(s, scene, view);
+      const int e = eye_side_of(s, scene, eye);
       if (e == 0) continue;   // (the eye in the plane: their projections only touch)
       // The group on the eye's side is drawn after the other.
       if (e == s.first_side) next[static_cast<std::size_t>(h)].push_back(g);

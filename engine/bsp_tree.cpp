@@ -261,22 +261,6 @@ class Builder {
   }
 };
 
-// sign(n . m): n the normal of the plane through o, a, b (input vertex ids), m a
-// direction in doubles. Intervals, then binary floats (Mpzf: no gcd) where they
-// cannot tell.
-int normal_dot_sign(const Scene& scene, const std::uint32_t span[3], const double m[3]) {
-  const Vec3 &o = scene.vertices[span[0]], &a = scene.vertices[span[1]], &b = scene.vertices[span[2]];
-  {
-    CGAL::Protect_FPU_rounding<true> upward;
-    const auto n = world::normal_of<Interval>(o, a, b);
-    const Interval d = n[0] * m[0] + n[1] * m[1] + n[2] * m[2];
-    if (d.inf() > 0) return 1;
-    if (d.sup() < 0) return -1;
-  }
-  const auto n = world::normal_of<CGAL::Mpzf>(o, a, b);
-  return (n[0] * CGAL::Mpzf(m[0]) + n[1] * CGAL::Mpzf(m[1]) + n[2] * CGAL::Mpzf(m[2])).sign();
-}
-
 }  // namespace
 
 BspTree build_bsp_tree(const Scene& scene, std::shared_ptr<const WorldFacets> wf,
@@ -294,12 +278,54 @@ BspTree build_bsp_tree(const Scene& scene, int threads) {
   return build_bsp_tree(scene, std::move(wf), all);
 }
 
-int eye_side(const Scene& scene, const std::uint32_t span[3], const View& view) {
-  if (view.perspective)
-    return world::orientation(scene.vertices[span[0]], scene.vertices[span[1]], scene.vertices[span[2]], view.eye);
-  // Depth grows along m[2] (larger is farther): the eye lies towards -m[2], at infinity.
-  const double toward_eye[3] = {-view.m[2][0], -view.m[2][1], -view.m[2][2]};
-  return normal_dot_sign(scene, span, toward_eye);
+Eye eye_of(const View& view) {
+  Eye e;
+  auto q = [&](int r, int c) { return mpq_class(view.m[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)]); };
+  if (view.perspective) {
+    // The null vector of the rows X, Y, W (3 x 4): its components are the signed
+    // 3 x 3 minors.
+    const int rows[3] = {0, 1, 3};
+    for (int j = 0; j < 4; ++j) {
+      int c[3], k = 0;
+      for (int col = 0; col < 4; ++col)
+        if (col != j) c[k++] = col;
+      auto m = [&](int i, int l) { return q(rows[i], c[l]); };
+      const mpq_class minor = m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1)) -
+                              m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0)) +
+                              m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0));
+      e.h[static_cast<std::size_t>(j)] = j % 2 == 0 ? minor : mpq_class(-minor);
+    }
+    if (sgn(e.h[3]) < 0)
+      for (auto& x : e.h) x = -x;
+  } else {
+    // r x u, turned against depth (d . (r x u) > 0 for the view's frame; its sign is taken).
+    const mpq_class wx = q(0, 1) * q(1, 2) - q(0, 2) * q(1, 1), wy = q(0, 2) * q(1, 0) - q(0, 0) * q(1, 2),
+                    wz = q(0, 0) * q(1, 1) - q(0, 1) * q(1, 0);
+    const int s = sgn(q(2, 0) * wx + q(2, 1) * wy + q(2, 2) * wz) >= 0 ? -1 : 1;
+    e.h = {s * wx, s * wy, s * wz, mpq_class(0)};
+  }
+  for (std::size_t j = 0; j < 4; ++j) {
+    const auto i = CGAL::to_interval(e.h[j]);
+    e.near[j] = {i.first, i.second};
+  }
+  return e;
+}
+
+int eye_side(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s, const Eye& eye) {
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const Interval ux = Interval(q.x) - p.x, uy = Interval(q.y) - p.y, uz = Interval(q.z) - p.z;
+    const Interval vx = Interval(s.x) - r.x, vy = Interval(s.y) - r.y, vz = Interval(s.z) - r.z;
+    const Interval nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+    auto h = [&](std::size_t j) { return Interval(eye.near[j][0], eye.near[j][1]); };
+    const Interval d = nx * (h(0) - h(3) * p.x) + ny * (h(1) - h(3) * p.y) + nz * (h(2) - h(3) * p.z);
+    if (d.inf() > 0) return 1;
+    if (d.sup() < 0) return -1;
+  }
+  const mpq_class ux = mpq_class(q.x) - p.x, uy = mpq_class(q.y) - p.y, uz = mpq_class(q.z) - p.z;
+  const mpq_class vx = mpq_class(s.x) - r.x, vy = mpq_class(s.y) - r.y, vz = mpq_class(s.z) - r.z;
+  const mpq_class nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+  return sgn(nx * (eye.h[0] - eye.h[3] * p.x) + ny * (eye.h[1] - eye.h[3] * p.y) + nz * (eye.h[2] - eye.h[3] * p.z));
 }
 
 std::vector<std::uint32_t> back_to_front(const BspTree& t, const Scene& scene, const View& view) {
@@ -307,6 +333,7 @@ std::vector<std::uint32_t> back_to_front(const BspTree& t, const Scene& scene, c
   order.reserve(t.fragments.size());
   if (t.root < 0) return order;
   // Nodes to visit, and nodes whose own fragments are due (negative entries: ~node).
+  const Eye eye = eye_of(view);
   std::vector<int> stack{t.root};
   std::vector<std::uint32_t> on;
   while (!stack.empty()) {
@@ -324,7 +351,8 @@ std::vector<std::uint32_t> back_to_front(const BspTree& t, const Scene& scene, c
       continue;
     }
     const BspTree::Node& node = t.nodes[static_cast<std::size_t>(item)];
-    const bool eye_in_front = eye_side(scene, node.span, view) >= 0;
+    const Vec3 &o = scene.vertices[node.span[0]];
+    const bool eye_in_front = eye_side(o, scene.vertices[node.span[1]], o, scene.vertices[node.span[2]], eye) >= 0;
     const int first = eye_in_front ? node.back : node.front, last = eye_in_front ? node.front : node.back;
     // (A stack: pushed in reverse.)
     if (last >= 0) stack.push_back(last);

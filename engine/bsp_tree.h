@@ -7,6 +7,7 @@
 #pragma once
 #include <gmpxx.h>
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -63,9 +64,20 @@ BspTree build_bsp_tree(const Scene& scene, std::shared_ptr<const WorldFacets> wf
 // edge-on come in any place (they hide nothing).
 std::vector<std::uint32_t> back_to_front(const BspTree& tree, const Scene& scene, const View& view);
 
-// The side of the plane through three input vertices (ids) the eye is on: the
-// sign of orient3d with the eye point, or orthographically of n . (-d), d the
-// view direction (the eye at infinity). Exact.
-int eye_side(const Scene& scene, const std::uint32_t span[3], const View& view);
+// The eye as the view's projection sees it, exactly, in homogeneous coordinates
+// (x, y, z, w), w >= 0: the centre of projection (where the rows X, Y and W of
+// the view vanish: the doubles of view.eye are only near it), w > 0; or,
+// orthographically, the point at infinity (w = 0) towards which the screen
+// projects (against r x u, r and u the rows X and Y: the direction that keeps a
+// screen point). A plane is seen edge-on exactly when this point lies in it.
+struct Eye {
+  std::array<mpq_class, 4> h;
+  std::array<std::array<double, 2>, 4> near;   // intervals around h
+};
+Eye eye_of(const View& view);
+
+// The side of the plane through input vertex p with normal (q - p) x (s - r)
+// (a facet's plane: r = p) that the eye is on: +1, -1, or 0 in it. Exact.
+int eye_side(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s, const Eye& eye);
 
 }  // namespace vismap::engine
