@@ -184,10 +184,10 @@ bool piercing_segment(const Facet& A, const Facet& B, P3& p, P3& q) {
 
 struct Cutter {
   const ScreenScene& ss;
-  std::vector<std::vector<Cut>>& cuts;
+  std::vector<std::vector<P2>>& cuts;
   std::int64_t pairs = 0, crossings = 0;
 
-  void cut(int c, const P2& p, bool depth = false) { cuts[c].push_back(Cut{p, depth}); }
+  void cut(int c, const P2& p) { cuts[c].push_back(p); }
 
   // p lies on C's line strictly between its end points.
   static bool inside(const Curve& C, const P2& p) {
@@ -247,8 +247,8 @@ struct Cutter {
     const FT flo = depth_on(C, lo) - depth_on(D, lo), fhi = depth_on(C, hi) - depth_on(D, hi);
     if (CGAL::sign(flo) * CGAL::sign(fhi) < 0) {
       const P2 x = lo + (flo / (flo - fhi)) * (hi - lo);
-      cut(ci, x, true);
-      cut(di, x, true);
+      cut(ci, x);
+      cut(di, x);
       ++crossings;
     }
   }
@@ -428,8 +428,8 @@ void drop_painted_over(ScreenScene& ss, const std::vector<Fragment>& order, Stat
   stats.count("curves_painted_over", static_cast<std::int64_t>(before - ss.curves.size()));
 }
 
-std::vector<std::vector<Cut>> cut_at_crossings(const ScreenScene& ss, Stats& stats) {
-  std::vector<std::vector<Cut>> cuts(ss.curves.size());
+std::vector<std::vector<P2>> cut_at_crossings(const ScreenScene& ss, Stats& stats) {
+  std::vector<std::vector<P2>> cuts(ss.curves.size());
   std::vector<CGAL::Bbox_2> boxes;
   boxes.reserve(ss.curves.size());
   for (const Curve& c : ss.curves) boxes.push_back(c.box);
@@ -459,7 +459,7 @@ std::vector<std::vector<Cut>> cut_at_crossings(const ScreenScene& ss, Stats& sta
       const int turn = G.facing == Facing::Front ? 1 : -1;
       for (std::size_t k = 0; k < G.v.size(); ++k)
         if (CGAL::orientation(G.v[k].xy(), G.v[(k + 1) % G.v.size()].xy(), x) * turn <= 0) return;
-      cuts[ci].push_back(Cut{x, false});
+      cuts[ci].push_back(x);
       ++piercings;
     });
   }
@@ -468,7 +468,7 @@ std::vector<std::vector<Cut>> cut_at_crossings(const ScreenScene& ss, Stats& sta
 }
 
 std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Fragment>& order,
-                                   std::vector<std::vector<Cut>>& cuts, const std::vector<FacesList>& faces,
+                                   std::vector<std::vector<P2>>& cuts, const std::vector<FacesList>& faces,
                                    Stats& stats) {
   std::vector<CGAL::Bbox_2> boxes;
   boxes.reserve(order.size());
@@ -483,28 +483,20 @@ std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Frag
     const P2 s = cv.s->xy(), t = cv.t->xy();
     CurveLine line{*cv.s, *cv.t, {}};
     // Sort the cuts along the curve (by its dominant coordinate); a point cut
-    // twice is one cut, a depth crossing if either was.
-    std::vector<Cut>& pts = cuts[ci];
+    // twice is one cut.
+    std::vector<P2>& pts = cuts[ci];
     const bool use_x = CGAL::compare(CGAL::abs(cv.t->x - cv.s->x), CGAL::abs(cv.t->y - cv.s->y)) != CGAL::SMALLER;
     const auto forward = use_x ? CGAL::compare_x(s, t) : CGAL::compare_y(s, t);
-    std::sort(pts.begin(), pts.end(), [&](const Cut& a, const Cut& b) {
-      return (use_x ? CGAL::compare_x(a.p, b.p) : CGAL::compare_y(a.p, b.p)) == forward;
-    });
-    std::size_t kept = 0;
-    for (std::size_t k = 0; k < pts.size(); ++k) {
-      // On one line, equal along the dominant axis is the same point.
-      const bool same = kept > 0 && (use_x ? CGAL::compare_x(pts[kept - 1].p, pts[k].p)
-                                           : CGAL::compare_y(pts[kept - 1].p, pts[k].p)) == CGAL::EQUAL;
-      if (same) pts[kept - 1].depth_crossing |= pts[k].depth_crossing;
-      else pts[kept++] = pts[k];
-    }
-    pts.resize(kept);
-    pts.insert(pts.begin(), Cut{s, true});
-    pts.push_back(Cut{t, true});
-    bool extend = false;   // out.back() is this curve's previous piece
+    auto along = [&](const P2& a, const P2& b) { return use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b); };
+    std::sort(pts.begin(), pts.end(), [&](const P2& a, const P2& b) { return along(a, b) == forward; });
+    // (On one line, equal along the dominant axis is the same point.)
+    pts.erase(std::unique(pts.begin(), pts.end(), [&](const P2& a, const P2& b) { return along(a, b) == CGAL::EQUAL; }),
+              pts.end());
+    pts.insert(pts.begin(), s);
+    pts.push_back(t);
     for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
       ++pieces;
-      const P2 m = CGAL::midpoint(pts[k].p, pts[k + 1].p);
+      const P2 m = CGAL::midpoint(pts[k], pts[k + 1]);
       // The fragments near m, last drawn first: the first covering each side is
       // what is painted there. Usually one fragment covers both sides and lies
       // in front of the curve, which settles the piece (hidden, one face on both
@@ -542,16 +534,10 @@ std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Frag
       }
       const bool drawn = seen && cv.drawn;
       visible += drawn;
-      if (!seen && left == right) { extend = false; continue; }
-      // The same as the piece before and no depth crossing between: one piece.
-      if (extend && !pts[k].depth_crossing && out.back().visible == seen && out.back().drawn == drawn &&
-          out.back().left == left && out.back().right == right) {
-        out.back().b = pts[k + 1].p;
-        continue;
-      }
+      if (!seen && left == right) continue;
       MapPiece mp;
-      mp.a = pts[k].p;
-      mp.b = pts[k + 1].p;
+      mp.a = pts[k];
+      mp.b = pts[k + 1];
       mp.left = left;
       mp.right = right;
       mp.visible = seen;
@@ -563,7 +549,6 @@ std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Frag
       mp.t = cv.t;
       mp.line = ci;
       out.push_back(std::move(mp));
-      extend = true;
     }
   }
   stats.count("pieces", pieces);

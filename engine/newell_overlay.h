@@ -30,22 +30,20 @@ void drop_painted_over(ScreenScene& ss, const std::vector<Fragment>& order, Stat
 // ends on it, the ends of a collinear overlap, where two collinear curves'
 // depths cross, and where a line of edge-on faces only pierces an occluding
 // facet (no intersection line ends there). Unsorted, possibly repeated.
-struct Cut {
-  P2 p;
-  bool depth_crossing = false;   // where two collinear curves' depths cross: pieces never merge here
-};
-std::vector<std::vector<Cut>> cut_at_crossings(const ScreenScene& ss, Stats& stats);
+std::vector<std::vector<P2>> cut_at_crossings(const ScreenScene& ss, Stats& stats);
 
 // Each piece between consecutive cuts, judged at its midpoint m from `order`
 // (drawing order): the face on each side is the last-drawn fragment covering the
 // points just beside m; a drawn curve is hidden where a fragment of a face not
 // its own covers both sides of m and is painted over it (drawn after its own
 // fragment; at exactly equal depth, the spec's face-index rule). Keeps the
-// visible pieces and those with different faces on their two sides, joining
-// consecutive pieces of one curve judged alike (except at depth crossings).
-// The pieces point at their curve's list in `faces` (faces_lists).
+// visible pieces and those with different faces on their two sides, one piece
+// per pair of consecutive cuts (never joined: assemble_map wants pieces that meet
+// only at their end points, and a joined piece would pass over a cut that
+// another curve's piece ends at). The pieces point at their curve's list in
+// `faces` (faces_lists).
 std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Fragment>& order,
-                                   std::vector<std::vector<Cut>>& cuts, const std::vector<FacesList>& faces,
+                                   std::vector<std::vector<P2>>& cuts, const std::vector<FacesList>& faces,
                                    Stats& stats);
 
 // Everything after the drawing order, for Newell's engine and the BSP engine
