@@ -9,8 +9,8 @@
 #include <type_traits>
 
 #include "engine/convex_inside.h"
+#include "engine/overlap_cuts.h"
 #include "engine/parallel.h"
-#include "engine/union_find.h"
 #include "engine/world_exact.h"
 
 namespace vismap::engine {
@@ -1181,62 +1181,6 @@ struct Cutter {
   }
 };
 
-// Collinear curves that overlap are cut at the same points, so that their pieces
-// coincide where they overlap (the map is assembled from pieces that meet only at
-// their end points): each gets the cuts and end points of the curves it overlaps,
-// directly or through others on the same line, that lie inside it. A cut made on
-// one of them alone (where it pierces a plane, or where it crosses a third
-// collinear curve in depth) would otherwise be missing on the others.
-void share_overlap_cuts(const ScreenScene& ss, std::vector<std::pair<int, int>>& overlaps, Cuts& cuts) {
-  if (overlaps.empty()) return;
-  std::sort(overlaps.begin(), overlaps.end());
-  overlaps.erase(std::unique(overlaps.begin(), overlaps.end()), overlaps.end());
-  UnionFind lines(ss.curves.size());
-  for (const auto& [c, d] : overlaps) lines.join(c, d);
-  std::vector<std::pair<int, int>> members;   // (line, curve)
-  for (const auto& [c, d] : overlaps) {
-    members.emplace_back(lines.find(c), c);
-    members.emplace_back(lines.find(d), d);
-  }
-  std::sort(members.begin(), members.end());
-  members.erase(std::unique(members.begin(), members.end()), members.end());
-  std::vector<P2> points;
-  for (std::size_t k = 0; k < members.size();) {
-    std::size_t l = k;
-    points.clear();
-    for (; l < members.size() && members[l].first == members[k].first; ++l) {
-      const Curve& C = ss.curves[members[l].second];
-      if (const std::vector<P2>* own = cuts.find(members[l].second)) points.insert(points.end(), own->begin(), own->end());
-      points.push_back(C.s->xy());
-      points.push_back(C.t->xy());
-    }
-    // The points in order along the common line (by x, or by y on a vertical line),
-    // each once; each curve takes those strictly between its ends: O(P log P) for
-    // P points, where asking every point of every curve was O(P^2) (the edges of
-    // walls seen edge-on, all on one screen line: minutes on a CAD part).
-    const Curve& C0 = ss.curves[members[k].second];
-    const bool use_x = CGAL::compare_x(C0.s->xy(), C0.t->xy()) != CGAL::EQUAL;
-    auto less = [&](const P2& a, const P2& b) {
-      return (use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b)) == CGAL::SMALLER;
-    };
-    std::sort(points.begin(), points.end(), less);
-    points.erase(std::unique(points.begin(), points.end(), [&](const P2& a, const P2& b) { return !less(a, b); }),
-                 points.end());
-    for (std::size_t m = k; m < l; ++m) {
-      const int ci = members[m].second;
-      const Curve& C = ss.curves[ci];
-      const bool forward = less(C.s->xy(), C.t->xy());
-      const P2 &lo = forward ? C.s->xy() : C.t->xy(), &hi = forward ? C.t->xy() : C.s->xy();
-      const auto first = std::upper_bound(points.begin(), points.end(), lo, less);
-      const auto last = std::lower_bound(first, points.end(), hi, less);
-      if (first == last) continue;
-      std::vector<P2>& own = cuts.at(ci);
-      own.insert(own.end(), first, last);
-    }
-    k = l;
-  }
-}
-
 }  // namespace
 
 // Step 8: in each cell, every pair of curves; an intersection counts in the cell
@@ -1314,7 +1258,11 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
     });
     stats.count("curves_needed", std::count(cuts.needed.begin(), cuts.needed.end(), 1));
   }
-  share_overlap_cuts(ss, overlaps, cuts);   // (sorts the pairs and drops repeats)
+  share_overlap_cuts(ss.curves, overlaps, [&](int c) { return cuts.find(c); },
+                     [&](int c, auto first, auto last) {
+                       std::vector<P2>& list = cuts.at(c);
+                       list.insert(list.end(), first, last);
+                     });
   // The cells' curve lists have served (step 9 looks up facets alone): freed
   // before the pieces are made, the peak of a large scene's run.
   parallel_chunks(static_cast<int>(g.cells.size()), 4096, threads, [&](int, Chunk r) {
