@@ -11,6 +11,7 @@
 #include <unordered_map>
 
 #include "engine/newell_geometry.h"
+#include "engine/overlap_cuts.h"
 
 namespace vismap::engine {
 namespace {
@@ -185,6 +186,7 @@ bool piercing_segment(const Facet& A, const Facet& B, P3& p, P3& q) {
 struct Cutter {
   const ScreenScene& ss;
   std::vector<std::vector<P2>>& cuts;
+  std::vector<std::pair<int, int>> overlaps{};   // collinear curves sharing more than a point
   std::int64_t pairs = 0, crossings = 0;
 
   void cut(int c, const P2& p) { cuts[c].push_back(p); }
@@ -208,6 +210,7 @@ struct Cutter {
       const P2 o = at_cs ? c0 : c1, c = at_cs ? c1 : c0;
       const P2 d = (same(C.vs, D.vs) || same(C.vt, D.vs)) ? d1 : d0;
       if (CGAL::orientation(o, c, d) != CGAL::COLLINEAR || !CGAL::is_positive((c - o) * (d - o))) return;
+      overlaps.emplace_back(ci, di);
       if (inside(C, d)) cut(ci, d);
       else if (inside(D, c)) cut(di, c);
       return;
@@ -242,6 +245,7 @@ struct Cutter {
     const P2 clo = std::min(c0, c1), chi = std::max(c0, c1), dlo = std::min(d0, d1), dhi = std::max(d0, d1);
     const P2 lo = std::max(clo, dlo), hi = std::min(chi, dhi);   // lexicographic order is the order along the line
     if (!(lo < hi)) return;                                       // they meet in a point at most
+    overlaps.emplace_back(ci, di);
     for (const P2& p : {d0, d1}) if (inside(C, p)) cut(ci, p);
     for (const P2& p : {c0, c1}) if (inside(D, p)) cut(di, p);
     const FT flo = depth_on(C, lo) - depth_on(D, lo), fhi = depth_on(C, hi) - depth_on(D, hi);
@@ -464,6 +468,10 @@ std::vector<std::vector<P2>> cut_at_crossings(const ScreenScene& ss, Stats& stat
     });
   }
   stats.count("piercings", piercings);
+  // Last, when every curve has its own cuts: collinear curves that overlap
+  // take each other's, piercings and depth crossings with a third included.
+  share_overlap_cuts(ss.curves, cutter.overlaps, [&](int c) { return &cuts[c]; },
+                     [&](int c, auto first, auto last) { cuts[c].insert(cuts[c].end(), first, last); });
   return cuts;
 }
 
