@@ -2,7 +2,7 @@
 // the extended algorithm, exact, with an exact overlay in place of the screen
 // map. One call per step; the steps live in screen_scene.cpp (the shared front
 // end), newell_order.cpp (the ordered list), newell_overlay.cpp (fragments ->
-// pieces) and arrangements/map_builder.cpp (the map). Stats follow the paper's
+// pieces) and arrangements/map_assembly.cpp (the map). Stats follow the paper's
 // Figure 2: faces in, faces considered, fragments written, and the time spent
 // ordering and slicing and writing the fragments.
 //
@@ -14,6 +14,7 @@
 #include "engine/newell_overlay.h"
 #include "engine/screen_scene.h"
 #include "engine/engine_run.h"
+#include "engine/threads.h"
 #include "engine/hidden_lines.h"
 #include "engine/visibility.h"
 
@@ -37,8 +38,9 @@ void map_from_order(const Scene& scene, const View& view, const Options& opt, Sc
   std::vector<std::vector<P2>>().swap(cuts);   // freed here, and counted here
   st.time("overlay", clock.lap());
 
-  // The planar arrangement of the kept pieces, its regions labelled.
-  build_map(pieces, map);
+  // The plane graph of the kept pieces, its regions labelled: assembled without
+  // a sweep, since the pieces meet only at their end points (cut_at_crossings).
+  assemble_map(pieces, map, thread_count(opt.threads, scene.faces.size()));
   unscale_map(map, ss.scale_exp);
   st.time("arrangement", clock.lap());
   st.count("visible_segments", static_cast<std::int64_t>(map.segments.size()));
