@@ -29,7 +29,10 @@ void drop_painted_over(ScreenScene& ss, const std::vector<Fragment>& order, Stat
 // Where each curve must be cut: every point where another curve crosses it or
 // ends on it, the ends of a collinear overlap, where two collinear curves'
 // depths cross, and where a line of edge-on faces only pierces an occluding
-// facet (no intersection line ends there). Unsorted, possibly repeated.
+// facet (no intersection line ends there); and each of these on every curve
+// that overlaps the cut one on its screen line (share_overlap_cuts), so that the
+// pieces of any two curves meet only at their end points. Unsorted, possibly
+// repeated.
 std::vector<std::vector<P2>> cut_at_crossings(const ScreenScene& ss, Stats& stats);
 
 // Each piece between consecutive cuts, judged at its midpoint m from `order`
