@@ -18,6 +18,10 @@ std::string to_cairo(const VisibilityMap&, const Drawing&, const Scene&, const V
                      const std::string& format) {
   throw std::runtime_error("this build has no cairo: " + format + " cannot be written (install libcairo2-dev and rebuild)");
 }
+std::string to_sheet_cairo(const std::vector<SheetView>&, const Scene&, const SvgOptions&, const std::string&,
+                           const std::string& format) {
+  throw std::runtime_error("this build has no cairo: " + format + " cannot be written (install libcairo2-dev and rebuild)");
+}
 #else
 bool cairo_available() { return true; }
 
@@ -84,11 +88,10 @@ void chains(cairo_t* cr, const Drawing& d, const DrawingStyle& style) {
   }
 }
 
-}  // namespace
-
-std::string to_cairo(const VisibilityMap& map, const Drawing& d, const Scene& scene, const View& view,
-                     const SvgOptions& opt, const std::string& format) {
-  const Placement& at = d.at;
+// A page of the placement's size on a surface for `format`, drawn by `draw`
+// (page units), written out.
+template <class Draw>
+std::string render(const Placement& at, const std::string& format, Draw&& draw) {
   // Page units to the surface's: points (PDF, EPS) or pixels (PNG), 96 px per inch.
   const double inch = at.mm ? 25.4 : 96;
   const double k = (format == "png" ? 96 : 72) / inch;
@@ -108,8 +111,7 @@ std::string to_cairo(const VisibilityMap& map, const Drawing& d, const Scene& sc
   cairo_scale(cr, k, k);
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
-  if (opt.style.fills && !opt.lines_only) regions(cr, map, at, scene, view, opt.style.shading);
-  chains(cr, d, opt.style);
+  draw(cr);
   cairo_destroy(cr);
   cairo_surface_flush(surface);
   if (format == "png") cairo_surface_write_to_png_stream(surface, append, &out);
@@ -118,6 +120,39 @@ std::string to_cairo(const VisibilityMap& map, const Drawing& d, const Scene& sc
   cairo_surface_destroy(surface);
   if (status != CAIRO_STATUS_SUCCESS) throw std::runtime_error(std::string("cairo: ") + cairo_status_to_string(status));
   return out;
+}
+
+void text(cairo_t* cr, const SheetText& t) {
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, t.size);
+  cairo_text_extents_t e;
+  cairo_text_extents(cr, t.text.c_str(), &e);
+  cairo_move_to(cr, t.x - (t.end ? e.x_advance : e.x_advance / 2), t.y);
+  cairo_show_text(cr, t.text.c_str());
+}
+
+}  // namespace
+
+std::string to_cairo(const VisibilityMap& map, const Drawing& d, const Scene& scene, const View& view,
+                     const SvgOptions& opt, const std::string& format) {
+  return render(d.at, format, [&](cairo_t* cr) {
+    if (opt.style.fills && !opt.lines_only) regions(cr, map, d.at, scene, view, opt.style.shading);
+    chains(cr, d, opt.style);
+  });
+}
+
+std::string to_sheet_cairo(const std::vector<SheetView>& views, const Scene& scene, const SvgOptions& opt,
+                           const std::string& note, const std::string& format) {
+  const SheetLayout layout = sheet_layout(views, opt, note);
+  return render(layout.page, format, [&](cairo_t* cr) {
+    for (std::size_t i = 0; i < views.size(); ++i) {
+      const Drawing& d = layout.drawings[i];
+      if (opt.style.fills && !opt.lines_only) regions(cr, *views[i].map, d.at, scene, *views[i].view, opt.style.shading);
+      chains(cr, d, opt.style);
+    }
+    for (const SheetText& t : layout.texts) text(cr, t);
+  });
 }
 #endif
 

@@ -5,6 +5,7 @@
 #pragma once
 #include <string>
 
+#include "arrangements/sheet.h"
 #include "arrangements/svg_writer.h"
 
 namespace vismap {
@@ -15,5 +16,9 @@ bool cairo_available();
 // format: "pdf", "eps" or "png". Throws std::runtime_error if cairo fails.
 std::string to_cairo(const VisibilityMap& map, const Drawing& drawing, const Scene& scene, const View& view,
                      const SvgOptions& opt, const std::string& format);
+
+// A drawing sheet (sheet.h) as PDF, EPS or PNG: the SVG sheet's page, views and labels.
+std::string to_sheet_cairo(const std::vector<SheetView>& views, const Scene& scene, const SvgOptions& opt,
+                           const std::string& note, const std::string& format);
 
 }  // namespace vismap

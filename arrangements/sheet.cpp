@@ -54,8 +54,7 @@ Grid grid_of(const std::vector<SheetView>& views, const std::vector<Extent>& ext
 
 }  // namespace
 
-std::string to_sheet_svg(const std::vector<SheetView>& views, const Scene& scene, const SvgOptions& opt,
-                         const std::string& note) {
+SheetLayout sheet_layout(const std::vector<SheetView>& views, const SvgOptions& opt, const std::string& note) {
   std::vector<Extent> ext;
   for (const SheetView& v : views) ext.push_back(extent_of(*v.map));
   const Grid g = grid_of(views, ext);
@@ -65,7 +64,8 @@ std::string to_sheet_svg(const std::vector<SheetView>& views, const Scene& scene
   sum_w = std::max(sum_w, 1e-300), sum_h = std::max(sum_h, 1e-300);
   // The page, its units (mm on paper, px on a canvas), the gap between cells and
   // the room a label takes under each row.
-  Placement page;
+  SheetLayout out;
+  Placement& page = out.page;
   page.mm = opt.page.width > 0;
   const double unit = page.mm ? 1 : 96 / 25.4;   // page units per mm
   const double margin = page.mm ? opt.page.margin : 0.03 * opt.page.size, gap = 12 * unit, label = 8 * unit;
@@ -89,7 +89,6 @@ std::string to_sheet_svg(const std::vector<SheetView>& views, const Scene& scene
   double y = top0;   // from the top, down
   for (std::size_t r = 0; r < g.h.size(); ++r) y += g.h[r] * k, bottom[r] = page.height - y, y += label + gap;
 
-  std::string out = svg_header(page);
   const double text = 3.5 * unit;
   for (const SheetView& v : views) {
     Drawing d = make_drawing(*v.map, opt.page, opt.provenance, opt.optimize_travel);
@@ -97,15 +96,31 @@ std::string to_sheet_svg(const std::vector<SheetView>& views, const Scene& scene
     d.at.k = k;
     d.at.x0 = g.x0[v.col], d.at.y0 = g.y0[v.row];
     d.at.left = left[v.col], d.at.bottom = bottom[v.row];
+    out.drawings.push_back(std::move(d));
     std::string id;
     for (char c : v.label) id += static_cast<char>(c == ' ' ? '-' : std::tolower(static_cast<unsigned char>(c)));
-    out += "<g id=\"" + id + "\">\n" + svg_layers(*v.map, d, scene, *v.view, opt, id + "-");
-    out += "<text x=\"" + num(left[v.col] + g.w[v.col] * k / 2) + "\" y=\"" + num(page.height - bottom[v.row] + label * 0.75) +
-           "\" font-family=\"sans-serif\" font-size=\"" + num(text) + "\" text-anchor=\"middle\">" + v.label + "</text>\n</g>\n";
+    out.ids.push_back(id);
+    out.texts.push_back({left[v.col] + g.w[v.col] * k / 2, page.height - bottom[v.row] + label * 0.75, text, false, v.label});
   }
-  if (!note.empty())
-    out += "<text x=\"" + num(page.width - margin) + "\" y=\"" + num(page.height - margin / 2) +
-           "\" font-family=\"sans-serif\" font-size=\"" + num(text * 0.8) + "\" text-anchor=\"end\">" + note + "</text>\n";
+  if (!note.empty()) out.texts.push_back({page.width - margin, page.height - margin / 2, text * 0.8, true, note});
+  return out;
+}
+
+std::string to_sheet_svg(const std::vector<SheetView>& views, const Scene& scene, const SvgOptions& opt,
+                         const std::string& note) {
+  const SheetLayout layout = sheet_layout(views, opt, note);
+  auto text = [](const SheetText& t) {
+    return "<text x=\"" + num(t.x) + "\" y=\"" + num(t.y) + "\" font-family=\"sans-serif\" font-size=\"" + num(t.size) +
+           "\" text-anchor=\"" + (t.end ? "end" : "middle") + "\">" + t.text + "</text>\n";
+  };
+  std::string out = svg_header(layout.page);
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const SheetView& v = views[i];
+    out += "<g id=\"" + layout.ids[i] + "\">\n" +
+           svg_layers(*v.map, layout.drawings[i], scene, *v.view, opt, layout.ids[i] + "-");
+    out += text(layout.texts[i]) + "</g>\n";
+  }
+  for (std::size_t i = views.size(); i < layout.texts.size(); ++i) out += text(layout.texts[i]);
   return out + "</svg>\n";
 }
 

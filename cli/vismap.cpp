@@ -68,7 +68,7 @@ camera (default: orthographic, the whole scene seen obliquely):
                        per line (e.g. '--dir -1,-2,-3' or '--eye 4,3,1.6
                        --target 0,0,1 --fov 60'; '#' comments), or
                        sheet[:first|:third] (front, top, right and isometric
-                       views on one SVG page, -o NAME.svg); each other output
+                       views on one page, -o NAME.svg or .pdf); each other output
                        is named with %d (or %03d), the view's number from 0
 lines:
   --crease DEG         dihedral angle making a shared edge a crease (default 30)
@@ -257,8 +257,8 @@ int main(int argc, char** argv) {
       if (json_path.empty() && svg_path.empty() && painter_path.empty())
         throw Usage("--views needs an output (--json, -o or --painter, each named with %d)");
       const bool sheet = !vismap::cli::sheet_note(views_spec).empty();
-      if (sheet && !svg_path.empty() && vismap::drawing_format(svg_path) != "svg")
-        throw Usage("--views sheet draws one SVG page (-o NAME.svg), got '" + svg_path + "'");
+      if (sheet && !svg_path.empty() && vismap::drawing_format(svg_path) == "dxf")
+        throw Usage("--views sheet draws one page as .svg, .pdf, .eps or .png, got '" + svg_path + "'");
       for (const std::string* out : {&json_path, &svg_path, &painter_path})
         if (!out->empty() && !(sheet && out == &svg_path) && (*out == "-" || !vismap::cli::has_view_field(*out)))
           throw Usage("with --views, each output is a file named with %d for the view's number, got '" + *out + "'");
@@ -355,7 +355,9 @@ int main(int argc, char** argv) {
       std::vector<vismap::SheetView> sheet;
       for (std::size_t n = 0; n < views.size(); ++n)
         sheet.push_back({&sheet_maps[n], &views[n], cameras[n].label, cameras[n].row, cameras[n].col});
-      vismap::write_file_atomically(sheet_path, vismap::to_sheet_svg(sheet, scene, svg, note));
+      const std::string fmt = vismap::drawing_format(sheet_path);
+      vismap::write_file_atomically(sheet_path, fmt == "svg" ? vismap::to_sheet_svg(sheet, scene, svg, note)
+                                                             : vismap::to_sheet_cairo(sheet, scene, svg, note, fmt));
     }
     return 0;
   } catch (const vismap::InputError& e) {

@@ -649,8 +649,20 @@ TEST(Views, ASheetLinesUpFrontTopAndRight) {
   }
   const Result bad = vismap_test::run({kBin, scene, "--views", "sheet:second", "-o", dir.file("x.svg")}, dir.path());
   EXPECT_EQ(bad.status, 2) << both(bad);
-  const Result pdf = vismap_test::run({kBin, scene, "--views", "sheet", "-o", dir.file("x.pdf")}, dir.path());
-  EXPECT_EQ(pdf.status, 2) << both(pdf);
+  // The same page as PDF, EPS and PNG (cairo); DXF has no sheet.
+  for (const auto& [ext, magic] : std::vector<std::pair<std::string, std::string>>{
+           {"pdf", "%PDF-"}, {"eps", "%!PS-Adobe-3.0 EPSF"}, {"png", "\x89PNG"}}) {
+    const Result r = vismap_test::run({kBin, scene, "--views", "sheet", "--page", "a4", "-o", dir.file("sheet." + ext)},
+                                      dir.path());
+    ASSERT_EQ(r.status, 0) << ext << "\n" << both(r);
+    EXPECT_EQ(vismap_test::slurp(dir.file("sheet." + ext)).rfind(magic, 0), 0u) << ext;
+  }
+  // An A4 page in points, landscape or portrait.
+  const std::string pdf = vismap_test::slurp(dir.file("sheet.pdf"));
+  EXPECT_TRUE(pdf.find("/MediaBox [ 0 0 595.") != std::string::npos || pdf.find("/MediaBox [ 0 0 841.") != std::string::npos);
+  const Result dxf = vismap_test::run({kBin, scene, "--views", "sheet", "-o", dir.file("x.dxf")}, dir.path());
+  EXPECT_EQ(dxf.status, 2) << both(dxf);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("x.dxf")));
 }
 
 // A bad spec, a bad line of the file (named), an impossible camera in any view:
