@@ -68,8 +68,9 @@ camera (default: orthographic, the whole scene seen obliquely):
                        per line (e.g. '--dir -1,-2,-3' or '--eye 4,3,1.6
                        --target 0,0,1 --fov 60'; '#' comments), or
                        sheet[:first|:third] (front, top, right and isometric
-                       views on one page, -o NAME.svg or .pdf); each other output
-                       is named with %d (or %03d), the view's number from 0
+                       views on one page, -o NAME.svg, .pdf, .eps or .png);
+                       each other output is named with %d (or %03d), the
+                       view's number from 0
 lines:
   --crease DEG         dihedral angle making a shared edge a crease (default 30)
   --smooth             also draw smooth edges
@@ -78,9 +79,10 @@ lines:
 engine:
   --algorithm A        franklin (default: Franklin's variable grid), newell
                        (Newell, Newell & Sancha's depth sort with plane
-                       splitting) or bsp (a BSP tree built once per scene,
-                       then Newell's overlay; with --views, one tree); all
-                       give the same map
+                       splitting) or bsp (a BSP tree per group of objects,
+                       ordered by Tomlinson's priority, built once per scene,
+                       then Newell's overlay; with --views, one forest for
+                       all views); all give the same map
   --threads N          threads for Franklin's engine and the JSON (default:
                        every usable core, one for scenes under 8192 faces);
                        the map is the same for every N
