@@ -155,10 +155,10 @@ std::vector<std::array<double, 4>> group_bounds(const BspForest& forest, const s
 
 // One tree's fragments in drawing order, on the screen, appended to `out`:
 // those of occluding facets, as Newell's depth sort writes its own.
-void append_fragments(const BspTree& tree, const Scene& scene, const View& view, const ScreenScene& ss,
-                      const std::vector<int>& screen, std::vector<Fragment>& out) {
+void append_fragments(const BspTree& tree, const Scene& scene, const View& view, const Eye& eye,
+                      const ScreenScene& ss, const std::vector<int>& screen, std::vector<Fragment>& out) {
   Images images(tree, scene, view, ss.scale_exp);
-  for (std::uint32_t xi : back_to_front(tree, scene, view)) {
+  for (std::uint32_t xi : back_to_front(tree, scene, eye)) {
     const BspTree::Fragment& x = tree.fragments[xi];
     const int fi = screen[x.facet];
     const Facet& F = ss.facets[static_cast<std::size_t>(fi)];
@@ -175,24 +175,24 @@ void append_fragments(const BspTree& tree, const Scene& scene, const View& view,
 std::vector<Fragment> fragments_in_order(BspForest& forest, const Scene& scene, const View& view,
                                          const ScreenScene& ss, Stats& stats) {
   const std::vector<int> screen = screen_facets(*forest.facets, ss);
+  const Eye eye = eye_of(view);   // (once: every tree and every pair of groups asks it)
   std::vector<Fragment> out;
-  for (const BspTree* tree : trees_back_to_front(forest, scene, view, group_bounds(forest, screen, ss), stats))
-    append_fragments(*tree, scene, view, ss, screen, out);
+  for (const BspTree* tree : trees_back_to_front(forest, scene, eye, group_bounds(forest, screen, ss), stats))
+    append_fragments(*tree, scene, view, eye, ss, screen, out);
   return out;
 }
 
-// The forest's size: objects, groups, and their trees' fragments, splits, nodes
-// and depth (the circuits' trees made so far included).
+// The forest's size: objects, groups, and the groups' trees' fragments, splits,
+// nodes and depth (not the trees of circuits, made as views need them).
 void count_forest(const BspForest& forest, Stats& st) {
   std::int64_t fragments = 0, splits = 0, nodes = 0;
   int depth = 0;
-  auto add = [&](const BspTree& t) {
+  for (const BspTree& t : forest.trees) {
     fragments += static_cast<std::int64_t>(t.fragments.size());
     splits += t.splits;
     nodes += static_cast<std::int64_t>(t.nodes.size());
     depth = std::max(depth, t.depth);
-  };
-  for (const BspTree& t : forest.trees) add(t);
+  }
   st.count("bsp_objects", forest.objects);
   st.count("bsp_groups", static_cast<std::int64_t>(forest.groups.size()));
   st.count("bsp_fragments", fragments);

@@ -126,7 +126,7 @@ class ForestBuilder {
   bool separate(int g, int h, Separation& s) const {
     for (int owner : {g, h})
       for (auto fi : f_.groups[static_cast<std::size_t>(owner)]) {
-        const std::array<std::uint32_t, 3> span = spanning(f_.facets->facets[fi].v);
+        const std::array<std::uint32_t, 3> span = spanning_ids(scene_, f_.facets->facets[fi]);
         s.ids = {span[0], span[1], span[0], span[2]};
         if (splits(g, h, s)) return true;
       }
@@ -158,14 +158,15 @@ class ForestBuilder {
     return false;
   }
 
-  // Edges p-q parallel to r-s give no plane.
+  // Edges p-q parallel to r-s give no plane: (q - p) x (s - r) = 0, exactly
+  // (differences of doubles in Mpzf).
   bool parallel(const Separation& s) const {
+    using M = CGAL::Mpzf;
     const Vec3 &p = scene_.vertices[s.ids[0]], &q = scene_.vertices[s.ids[1]];
     const Vec3 &r = scene_.vertices[s.ids[2]], &t = scene_.vertices[s.ids[3]];
-    const Vec3 o{0, 0, 0}, u{q.x - p.x, q.y - p.y, q.z - p.z}, v{t.x - r.x, t.y - r.y, t.z - r.z};
-    // (the differences may round: this only skips a candidate, the sides below are exact)
-    const auto n = world::normal_of<CGAL::Mpzf>(o, u, v);
-    return n[0].sign() == 0 && n[1].sign() == 0 && n[2].sign() == 0;
+    const M ux = M(q.x) - M(p.x), uy = M(q.y) - M(p.y), uz = M(q.z) - M(p.z);
+    const M vx = M(t.x) - M(r.x), vy = M(t.y) - M(r.y), vz = M(t.z) - M(r.z);
+    return (uy * vz - uz * vy).sign() == 0 && (uz * vx - ux * vz).sign() == 0 && (ux * vy - uy * vx).sign() == 0;
   }
 
   // The group's edges (vertex id pairs, each once).
@@ -179,14 +180,6 @@ class ForestBuilder {
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;
-  }
-
-  std::array<std::uint32_t, 3> spanning(const SmallVec<std::uint32_t, 4>& v) const {
-    for (std::size_t j = 2; j < v.size(); ++j) {
-      const auto n = world::normal_of<CGAL::Mpzf>(scene_.vertices[v[0]], scene_.vertices[v[1]], scene_.vertices[v[j]]);
-      if (n[0].sign() != 0 || n[1].sign() != 0 || n[2].sign() != 0) return {v[0], v[1], v[j]};
-    }
-    return {v[0], v[1], v[2]};
   }
 
   int sides(int g, const Separation& plane) const {
@@ -322,10 +315,9 @@ BspForest build_bsp_forest(const Scene& scene, int threads) {
   return forest;
 }
 
-std::vector<const BspTree*> trees_back_to_front(BspForest& forest, const Scene& scene, const View& view,
+std::vector<const BspTree*> trees_back_to_front(BspForest& forest, const Scene& scene, const Eye& eye,
                                                 const std::vector<std::array<double, 4>>& screen, Stats& stats) {
   const int n = static_cast<int>(forest.groups.size());
-  const Eye eye = eye_of(view);
   // Groups whose screen bounds overlap, ordered by their plane: edges from the
   // group drawn first to the one drawn after.
   std::vector<int> shown;

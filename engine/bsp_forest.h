@@ -48,12 +48,12 @@ struct BspForest {
 // The forest of the scene's facets. Throws InputError as make_world_facets does.
 BspForest build_bsp_forest(const Scene& scene, int threads = 1);
 
-// The trees to draw, back to front, for a view: `screen[g]` bounds group g's
+// The trees to draw, back to front, for a view's eye: `screen[g]` bounds group g's
 // occluding facets on the screen (x0, y0, x1, y1; x0 > x1 where it has none).
 // Groups whose bounds overlap are ordered by their plane; each cycle of them
 // is drawn by the tree of its union. Counts priority_pairs and
 // priority_circuits into `stats`.
-std::vector<const BspTree*> trees_back_to_front(BspForest& forest, const Scene& scene, const View& view,
+std::vector<const BspTree*> trees_back_to_front(BspForest& forest, const Scene& scene, const Eye& eye,
                                                 const std::vector<std::array<double, 4>>& screen, Stats& stats);
 
 }  // namespace vismap::engine

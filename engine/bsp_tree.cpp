@@ -80,10 +80,9 @@ class Builder {
   const Scene& scene_;
   BspTree& t_;
   std::vector<std::uint32_t> point_of_;                  // input vertex -> its point, or ~0u
-  // Per point (unused for input vertices): its coordinates as intervals, the
-  // segment it was cut from, and the plane that cut it (spanning vertex ids).
+  // Per point (unused for input vertices): its coordinates as intervals, and
+  // the plane that cut it (spanning vertex ids). (Its segment: Point::a, b.)
   std::vector<std::array<Interval, 3>> split_interval_;
-  std::vector<std::array<std::uint32_t, 2>> parents_;
   std::vector<std::array<std::uint32_t, 3>> cut_by_;
 
   std::uint32_t point_of_vertex(std::uint32_t id) {
@@ -94,7 +93,6 @@ class Builder {
       p.vertex = id;
       t_.points.push_back(p);
       split_interval_.emplace_back();
-      parents_.emplace_back();
       cut_by_.emplace_back();
     }
     return point_of_[id];
@@ -114,8 +112,7 @@ class Builder {
     // In the plane, known without rationals (the commonest case on a mesh: a
     // point cut on an edge two facets share lies in both their planes): the plane
     // holds the segment it was cut from, or is the plane that cut it.
-    const auto& [p0, p1] = parents_[i];
-    if (side(p0, pl) == 0 && side(p1, pl) == 0) return 0;
+    if (side(p.a, pl) == 0 && side(p.b, pl) == 0) return 0;
     const auto& c = cut_by_[i];
     auto in_plane = [&](std::uint32_t id) { return world::orientation(*pl.o, *pl.a, *pl.b, scene_.vertices[id]) == 0; };
     if (in_plane(c[0]) && in_plane(c[1]) && in_plane(c[2])) return 0;
@@ -154,22 +151,12 @@ class Builder {
     x.z = a[2] + t * (b[2] - a[2]);
     split_interval_.push_back({Interval(CGAL::to_interval(x.x)), Interval(CGAL::to_interval(x.y)),
                                Interval(CGAL::to_interval(x.z))});
-    parents_.push_back({p, q});
     cut_by_.push_back(span);
     t_.points.push_back(std::move(x));
     return static_cast<std::uint32_t>(t_.points.size() - 1);
   }
 
-  // Three corners of facet f that span its plane (a facet's corners are input vertices).
-  std::array<std::uint32_t, 3> span_of(std::uint32_t f) const {
-    const auto& v = t_.facets->facets[f].v;
-    if (v.size() == 3) return {v[0], v[1], v[2]};   // (facets are not degenerate)
-    for (std::size_t j = 2; j < v.size(); ++j) {
-      const auto n = world::normal_of<CGAL::Mpzf>(scene_.vertices[v[0]], scene_.vertices[v[1]], scene_.vertices[v[j]]);
-      if (n[0].sign() != 0 || n[1].sign() != 0 || n[2].sign() != 0) return {v[0], v[1], v[static_cast<std::size_t>(j)]};
-    }
-    return {v[0], v[1], v[2]};   // (not reached: facets are not degenerate)
-  }
+  std::array<std::uint32_t, 3> span_of(std::uint32_t f) const { return spanning_ids(scene_, t_.facets->facets[f]); }
 
   // Which sides of the plane fragment x has corners strictly on: 1 front, 2 back.
   int sides_of(const BspTree::Fragment& x, Plane& pl) {
@@ -328,12 +315,11 @@ int eye_side(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s, const E
   return sgn(nx * (eye.h[0] - eye.h[3] * p.x) + ny * (eye.h[1] - eye.h[3] * p.y) + nz * (eye.h[2] - eye.h[3] * p.z));
 }
 
-std::vector<std::uint32_t> back_to_front(const BspTree& t, const Scene& scene, const View& view) {
+std::vector<std::uint32_t> back_to_front(const BspTree& t, const Scene& scene, const Eye& eye) {
   std::vector<std::uint32_t> order;
   order.reserve(t.fragments.size());
   if (t.root < 0) return order;
   // Nodes to visit, and nodes whose own fragments are due (negative entries: ~node).
-  const Eye eye = eye_of(view);
   std::vector<int> stack{t.root};
   std::vector<std::uint32_t> on;
   while (!stack.empty()) {

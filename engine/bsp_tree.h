@@ -57,12 +57,13 @@ BspTree build_bsp_tree(const Scene& scene, int threads = 1);
 BspTree build_bsp_tree(const Scene& scene, std::shared_ptr<const WorldFacets> wf,
                        const std::vector<std::uint32_t>& facets);
 
-// The fragments in drawing order for a view (first drawn first), from the eye
-// point (perspective) or from infinity against the view direction:
+// The fragments in drawing order for a view's eye (eye_of, below; first drawn
+// first), a point (perspective) or at infinity against the view direction:
 // for any two whose projections overlap in an open set, the later one is nearer
 // there, or at equal depth of a lower face index. Fragments in planes seen
 // edge-on come in any place (they hide nothing).
-std::vector<std::uint32_t> back_to_front(const BspTree& tree, const Scene& scene, const View& view);
+struct Eye;
+std::vector<std::uint32_t> back_to_front(const BspTree& tree, const Scene& scene, const Eye& eye);
 
 // The eye as the view's projection sees it, exactly, in homogeneous coordinates
 // (x, y, z, w), w >= 0: the centre of projection (where the rows X, Y and W of

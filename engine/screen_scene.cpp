@@ -125,27 +125,6 @@ struct Spanning {
   Vec3 o, p, q;
 };
 
-// Their input vertex ids.
-std::array<std::uint32_t, 3> spanning_ids(const Scene& scene, const WorldFacet& w) {
-  const auto& v = w.v;
-  // A triangle spans its plane, or nothing does (then its normal is zero from
-  // any corners: a degenerate triangle is never an occluder, nor a crease).
-  if (v.size() == 3) return {v[0], v[1], v[2]};
-  const Vec3& o = scene.vertices[v[0]];
-  for (std::size_t k = 1; k + 1 < v.size(); ++k) {
-    const Vec3 &p = scene.vertices[v[k]], &q = scene.vertices[v[k + 1]];
-    if (world::within(100, {&o, &p, &q})) {
-      CGAL::Protect_FPU_rounding<true> upward;
-      const auto n = world::normal_of<Interval>(o, p, q);
-      if (std::any_of(n.begin(), n.end(), [](const Interval& x) { return x.inf() > 0 || x.sup() < 0; }))
-        return {v[0], v[k], v[k + 1]};
-    }
-    const auto n = world::normal_of<CGAL::Mpzf>(o, p, q);
-    if (n[0].sign() != 0 || n[1].sign() != 0 || n[2].sign() != 0) return {v[0], v[k], v[k + 1]};
-  }
-  return {v[0], v[0], v[0]};   // (a planar facet always has a spanning triple)
-}
-
 Spanning spanning_corners(const Scene& scene, const WorldFacet& w) {
   const auto ids = spanning_ids(scene, w);
   return {scene.vertices[ids[0]], scene.vertices[ids[1]], scene.vertices[ids[2]]};

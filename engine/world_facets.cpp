@@ -11,6 +11,7 @@
 #include "engine/holed_faces.h"
 #include "engine/input_polygon.h"
 #include "engine/parallel.h"
+#include "engine/world_exact.h"
 
 namespace vismap::engine {
 namespace {
@@ -283,5 +284,27 @@ WorldFacets make_world_facets(const Scene& scene, int threads) {
   }
   return out;
 }
+
+std::array<std::uint32_t, 3> spanning_ids(const Scene& scene, const WorldFacet& w) {
+  const auto& v = w.v;
+  // A triangle spans its plane, or nothing does (then its normal is zero from
+  // any corners: a degenerate triangle is never an occluder, nor a crease).
+  if (v.size() == 3) return {v[0], v[1], v[2]};
+  const Vec3& o = scene.vertices[v[0]];
+  for (std::size_t k = 1; k + 1 < v.size(); ++k) {
+    const Vec3 &p = scene.vertices[v[k]], &q = scene.vertices[v[k + 1]];
+    if (world::within(100, {&o, &p, &q})) {
+      CGAL::Protect_FPU_rounding<true> upward;
+      using Interval = CGAL::Interval_nt<false>;
+      const auto n = world::normal_of<Interval>(o, p, q);
+      if (std::any_of(n.begin(), n.end(), [](const Interval& x) { return x.inf() > 0 || x.sup() < 0; }))
+        return {v[0], v[k], v[k + 1]};
+    }
+    const auto n = world::normal_of<CGAL::Mpzf>(o, p, q);
+    if (n[0].sign() != 0 || n[1].sign() != 0 || n[2].sign() != 0) return {v[0], v[k], v[k + 1]};
+  }
+  return {v[0], v[0], v[0]};   // (a planar facet always has a spanning triple)
+}
+
 
 }  // namespace vismap::engine

@@ -4,6 +4,7 @@
 // polygons with holes by a constrained triangulation (engine/holed_faces.h).
 // Every facet keeps its polygon's index; diagonals are marked internal.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -34,6 +35,11 @@ struct WorldFacets {
   std::vector<WorldFacet> facets;
   std::int64_t degenerate = 0, nonplanar = 0, nonconvex = 0;
 };
+
+// Three corners of a facet that span its plane (input vertex ids): the first
+// corner and the first two consecutive ones after it that are not collinear
+// with it (a triangle's own three). Exact.
+std::array<std::uint32_t, 3> spanning_ids(const Scene& scene, const WorldFacet& w);
 
 // Vertex ids in facets are canonical: equal coordinates give one id, so that
 // polygon soups share end points by identity. Chunks of faces on `threads` threads.
