@@ -33,7 +33,7 @@ namespace {
 constexpr std::uint64_t kSeed = 1980;  // one fixed scene per (N, D): runs are comparable
 
 using Engine = vismap::VisibilityMap (*)(const vismap::Scene&, const vismap::View&,
-                                         const vismap::Options&);
+                                         const vismap::Options&, const vismap::engine::WorldScene*);
 
 void bm_squares(benchmark::State& state, double depth, Engine engine) {
   const auto n = static_cast<std::size_t>(state.range(0));
@@ -52,7 +52,7 @@ void bm_squares(benchmark::State& state, double depth, Engine engine) {
     const auto start = std::chrono::steady_clock::now();
     vismap::VisibilityMap map;
     try {
-      map = engine(scene, view, options);
+      map = engine(scene, view, options, nullptr);
     } catch (const std::logic_error&) {   // the float variant's labels may contradict each other
       ++invalid;                          // (found when the map is assembled: the time still counts)
     }

@@ -305,7 +305,7 @@ int main(int argc, char** argv) {
     // A sheet: the views' maps kept for the one page drawn after them.
     const std::string note = vismap::cli::sheet_note(views_spec), sheet_path = note.empty() ? "" : svg_path;
     std::vector<vismap::VisibilityMap> sheet_maps;
-    vismap::ViewSeries series(scene, eng);   // (what no camera changes, made once for every view)
+    vismap::ViewSeries series(scene, eng, views.size());   // (what no camera changes, made once for every view)
     const std::string json_pattern = json_path, svg_pattern = note.empty() ? svg_path : "", painter_pattern = painter_path;
     for (std::size_t n = 0; n < views.size(); ++n) {
       const vismap::View& view = views[n];

@@ -205,7 +205,8 @@ void count_forest(const BspForest& forest, Stats& st) {
 }  // namespace engine
 
 VisibilityMap visibility_bsp(const Scene& scene, const View& view, const Options& opt,
-                             std::vector<PaintedFragment>* painter, engine::BspForest* shared) {
+                             std::vector<PaintedFragment>* painter, engine::BspForest* shared,
+                             const engine::WorldScene* world) {
   using namespace engine;
   VisibilityMap map = start_map(scene, view);
   Stats& st = map.stats;
@@ -221,7 +222,7 @@ VisibilityMap visibility_bsp(const Scene& scene, const View& view, const Options
   else clock.lap();
 
   // Transforming and initialising, as the other engines do.
-  ScreenScene ss = make_screen_scene(scene, view, opt, st);
+  ScreenScene ss = make_screen_scene(scene, view, opt, st, /*latent=*/false, /*cull=*/true, world);
   st.time("project_and_cull", clock.lap());
 
   // The drawing order: the groups by priority, each tree traversed from the eye.

@@ -205,9 +205,41 @@ void sort_by_rank(std::vector<Item>& items, std::vector<Rank>& rank, std::size_t
   std::copy(ranks.begin(), ranks.end(), rank.begin() + static_cast<std::ptrdiff_t>(b));
 }
 
+// Chunks of pieces, each with its ranks, in one vector in the order of each
+// piece's first sharer (its facet), then by rank: the stages that read the
+// pieces then walk the facets and vertices in order. Each piece's place, in one
+// pass over the chunks; the pieces moved there in parallel. The chunks are emptied.
+MatchedEdges in_facet_order(std::vector<MatchedEdges>& found, std::size_t nfacets, int threads) {
+  const std::size_t nchunks = found.size();
+  std::vector<std::uint32_t> next(nfacets + 1, 0);
+  for (const MatchedEdges& f : found)
+    for (const WorldPiece& p : f.pieces) ++next[p.sharers[0].facet + 1];
+  for (std::size_t f = 0; f < nfacets; ++f) next[f + 1] += next[f];
+  const std::vector<std::uint32_t> facet_start(next);
+  std::vector<std::vector<std::uint32_t>> place(nchunks);
+  for (std::size_t c = 0; c < nchunks; ++c)
+    for (const WorldPiece& p : found[c].pieces) place[c].push_back(next[p.sharers[0].facet]++);
+  MatchedEdges out;
+  out.pieces.resize(next.back());
+  out.rank.resize(next.back());
+  parallel_for(static_cast<int>(nchunks), threads, [&](int c) {
+    const auto k = static_cast<std::size_t>(c);
+    for (std::size_t i = 0; i < found[k].pieces.size(); ++i) {
+      out.pieces[place[k][i]] = std::move(found[k].pieces[i]);
+      out.rank[place[k][i]] = found[k].rank[i];
+    }
+    MatchedEdges().pieces.swap(found[k].pieces);
+  });
+  parallel_chunks(static_cast<int>(nfacets), 4096, threads, [&](int, Chunk r) {
+    for (auto f = static_cast<std::size_t>(r.begin); f < static_cast<std::size_t>(r.end); ++f)
+      sort_by_rank(out.pieces, out.rank, facet_start[f], facet_start[f + 1]);
+  });
+  return out;
+}
+
 }  // namespace
 
-std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, int cell_bits, int threads) {
+MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int cell_bits, int threads) {
   const Cells cells(cell_bits);
   // Every facet edge, in facet order (chunks of facets in parallel, each edge
   // in its slot: start[f] is facet f's first).
@@ -328,17 +360,10 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
     }
   };
 
-  // Where a piece goes among those of its first sharer: by its line's cells,
-  // then its place in the run's sweeps (the order of one pass over the runs).
-  struct Rank {
-    std::uint64_t cells;
-    std::uint32_t seq;
-    bool operator<(const Rank& o) const { return cells != o.cells ? cells < o.cells : seq < o.seq; }
-  };
-  struct Found {
-    std::vector<WorldPiece> pieces;
-    std::vector<Rank> rank;
-  };
+  // Where a piece goes among those of its first sharer (PieceRank): by its
+  // line's cells, then its place in the run's sweeps (the order of one pass over the runs).
+  using Rank = PieceRank;
+  using Found = MatchedEdges;
   // The pieces of groups [from, to): a group alone in its cells is one piece (its
   // edges, any number, lie between the same two vertices); a run's first group
   // makes the pieces of every group of the run, told apart by exact keys.
@@ -393,33 +418,33 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
     pieces_of_groups(from, to, w, mine);
     found[k] = std::move(mine);
   });
-  // In facet order (of each piece's first sharer), then by rank: the stages that
-  // read the pieces then walk the facets and vertices in order. Each piece's
-  // place, in one pass over the chunks; the pieces moved there in parallel.
-  const std::size_t nf_ = wf.facets.size();
-  std::vector<std::uint32_t> next(nf_ + 1, 0);
-  for (const Found& f : found)
-    for (const WorldPiece& p : f.pieces) ++next[p.sharers[0].facet + 1];
-  for (std::size_t f = 0; f < nf_; ++f) next[f + 1] += next[f];
-  const std::vector<std::uint32_t> facet_start(next);
-  std::vector<std::vector<std::uint32_t>> place(nchunks);
-  for (std::size_t c = 0; c < nchunks; ++c)
-    for (const WorldPiece& p : found[c].pieces) place[c].push_back(next[p.sharers[0].facet]++);
-  std::vector<WorldPiece> ordered(next.back());
-  std::vector<Rank> rank(next.back());
-  parallel_for(static_cast<int>(nchunks), threads, [&](int c) {
-    const auto k = static_cast<std::size_t>(c);
-    for (std::size_t i = 0; i < found[k].pieces.size(); ++i) {
-      ordered[place[k][i]] = std::move(found[k].pieces[i]);
-      rank[place[k][i]] = found[k].rank[i];
+  return in_facet_order(found, wf.facets.size(), threads);
+}
+
+std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, int cell_bits, int threads) {
+  return match_edges_ranked(scene, wf, cell_bits, threads).pieces;
+}
+
+MatchedEdges renumber_facets(const MatchedEdges& m, const std::vector<std::uint32_t>& new_index, int threads) {
+  // Chunks of pieces renumbered in parallel, each piece's sharers in the order
+  // of their new numbers (as matching would list them), then all put in order.
+  const int n = static_cast<int>(m.pieces.size()), size = 16384;
+  std::vector<MatchedEdges> chunks(static_cast<std::size_t>(std::max(1, chunk_count(n, size))));
+  parallel_chunks(n, size, threads, [&](int k, Chunk r) {
+    MatchedEdges mine;   // (filled here, stored once)
+    mine.pieces.reserve(static_cast<std::size_t>(r.end - r.begin));
+    mine.rank.assign(m.rank.begin() + r.begin, m.rank.begin() + r.end);
+    for (int i = r.begin; i < r.end; ++i) {
+      WorldPiece p = m.pieces[static_cast<std::size_t>(i)];
+      for (Sharer& s : p.sharers) s.facet = static_cast<int>(new_index[static_cast<std::size_t>(s.facet)]);
+      std::sort(p.sharers.begin(), p.sharers.end(), [](const Sharer& x, const Sharer& y) {
+        return x.facet < y.facet || (x.facet == y.facet && x.edge < y.edge);
+      });
+      mine.pieces.push_back(std::move(p));
     }
-    Found().pieces.swap(found[k].pieces);
+    chunks[static_cast<std::size_t>(k)] = std::move(mine);
   });
-  parallel_chunks(static_cast<int>(nf_), 4096, threads, [&](int, Chunk r) {
-    for (auto f = static_cast<std::size_t>(r.begin); f < static_cast<std::size_t>(r.end); ++f)
-      sort_by_rank(ordered, rank, facet_start[f], facet_start[f + 1]);
-  });
-  return ordered;
+  return in_facet_order(chunks, new_index.size(), threads);
 }
 
 }  // namespace vismap::engine

@@ -21,10 +21,31 @@ struct WorldPiece {
   SmallVec<Sharer, 2> sharers;    // every facet edge covering the piece (mostly one or two)
 };
 
+// A piece's place among the pieces of its first sharing facet: its line's
+// cells, then its place in the sweeps along the lines (edge_pieces.cpp). Unique
+// to the piece, and the same whatever the facets' order.
+struct PieceRank {
+  std::uint64_t cells;
+  std::uint32_t seq;
+  bool operator<(const PieceRank& o) const { return cells != o.cells ? cells < o.cells : seq < o.seq; }
+};
+
+struct MatchedEdges {
+  std::vector<WorldPiece> pieces;   // in the order of their first sharing facet, then of their ranks
+  std::vector<PieceRank> rank;      // rank[i]: pieces[i]'s
+};
+
 // Pieces in the order of their first sharing facet (then deterministic). cell_bits sets how finely lines
 // are told apart before exact keys decide (see edge_pieces.cpp); any value gives
 // the same pieces, only the work differs (tests vary it to reach every path).
 std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, int cell_bits = 20,
                                     int threads = 1);
+MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int cell_bits = 20, int threads = 1);
+
+// The pieces of `m` with facet f renumbered new_index[f], in the order
+// match_edges gives for the facets in their new order (the same pieces: only
+// the facets' numbers and order differ). For many views of one scene: the
+// edges are matched once, and each view orders the facets as it sees them.
+MatchedEdges renumber_facets(const MatchedEdges& m, const std::vector<std::uint32_t>& new_index, int threads = 1);
 
 }  // namespace vismap::engine

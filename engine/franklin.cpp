@@ -51,7 +51,8 @@ std::vector<MapPiece> map_pieces(engine::PieceChunks& pieces, const std::vector<
 #else
 #define VISMAP_FRANKLIN_ENTRY visibility_franklin
 #endif
-VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const Options& opt) {
+VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const Options& opt,
+                                    const engine::WorldScene* world) {
   using namespace engine;
   VisibilityMap map = start_map(scene, view);
   Stats& st = map.stats;
@@ -62,7 +63,7 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
 
   // 1. Project the scene exactly; skip what cannot be seen (outside, edge-on, back faces).
   // (For a lines-only drawing, curves that are not drawn stay latent until step 7.)
-  ScreenScene ss = make_screen_scene(scene, view, run, st, /*latent=*/!opt.regions);
+  ScreenScene ss = make_screen_scene(scene, view, run, st, /*latent=*/!opt.regions, /*cull=*/true, world);
   st.time("project_and_cull", clock.lap());
 
   // (Facets and curves are already in screen order: make_screen_scene.)

@@ -71,7 +71,7 @@ void map_from_order(const Scene& scene, const View& view, const Options& opt, Sc
 }  // namespace engine
 
 VisibilityMap visibility_newell(const Scene& scene, const View& view, const Options& opt,
-                                std::vector<PaintedFragment>* painter) {
+                                std::vector<PaintedFragment>* painter, const engine::WorldScene* world) {
   using namespace engine;
   VisibilityMap map = start_map(scene, view);
   Stats& st = map.stats;
@@ -80,7 +80,7 @@ VisibilityMap visibility_newell(const Scene& scene, const View& view, const Opti
 
   // Transforming and initialising: project exactly, drop what cannot be seen
   // (outside, edge-on, back faces of closed solids), as Franklin's engine does.
-  ScreenScene ss = make_screen_scene(scene, view, opt, st);
+  ScreenScene ss = make_screen_scene(scene, view, opt, st, /*latent=*/false, /*cull=*/true, world);
   st.time("project_and_cull", clock.lap());
 
   // Ordering and slicing faces: the list by farthest depth, the five tests,

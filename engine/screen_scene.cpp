@@ -159,10 +159,11 @@ bool is_crease(const Spanning& f, const Spanning& g, double c) {
 }
 
 // World facets in the Morton order of their approximate screen centres (doubles:
-// only the order depends on them). Everything built from them (edge pieces,
-// screen facets, curves) then lies in memory roughly as on screen, and the
-// later stages walk it in that order, without cache misses.
-void order_on_screen(WorldFacets& wf, const Scene& scene, const View& view, int threads) {
+// only the order depends on them): order[k] is the facet that goes k-th.
+// Everything built from them (edge pieces, screen facets, curves) then lies in
+// memory roughly as on screen, and the later stages walk it in that order,
+// without cache misses.
+std::vector<std::uint32_t> screen_order(const WorldFacets& wf, const Scene& scene, const View& view, int threads) {
   const std::size_t n = wf.facets.size();
   std::vector<std::array<double, 2>> centre(n);
   // The centres and (per chunk, then together) their bounding box.
@@ -208,11 +209,53 @@ void order_on_screen(WorldFacets& wf, const Scene& scene, const View& view, int 
                   : morton((centre[i][0] - x0) / w, (centre[i][1] - y0) / h),
               static_cast<std::uint32_t>(i)};
   parallel_sort(key.begin(), key.end(), std::less<>(), threads);   // ties by index: deterministic
-  std::vector<WorldFacet> facets(n);
-  parallel_chunks(static_cast<int>(n), size, threads, [&](int, Chunk r) {
-    for (int k = r.begin; k < r.end; ++k) facets[static_cast<std::size_t>(k)] = std::move(wf.facets[key[static_cast<std::size_t>(k)].second]);
+  std::vector<std::uint32_t> order(n);
+  for (std::size_t k = 0; k < n; ++k) order[k] = key[k].second;
+  return order;
+}
+
+// The facets of `wf` in `order` (moved out of it).
+void order_on_screen(WorldFacets& wf, const std::vector<std::uint32_t>& order, int threads) {
+  std::vector<WorldFacet> facets(order.size());
+  parallel_chunks(static_cast<int>(order.size()), 8192, threads, [&](int, Chunk r) {
+    for (int k = r.begin; k < r.end; ++k) facets[static_cast<std::size_t>(k)] = std::move(wf.facets[order[static_cast<std::size_t>(k)]]);
   });
   wf.facets = std::move(facets);
+}
+
+// The world scene as a view orders its facets: the facets copied in `order`,
+// the edge pieces renumbered (as matching them on those facets would give),
+// the closed components by facet in that order.
+struct InViewOrder {
+  WorldFacets wf;
+  std::vector<WorldPiece> pieces;
+  ClosedComponents closed;
+};
+InViewOrder in_view_order(const WorldScene& world, const std::vector<std::uint32_t>& order, int threads) {
+  const std::size_t n = order.size();
+  InViewOrder v;
+  v.wf.degenerate = world.wf.degenerate;
+  v.wf.nonplanar = world.wf.nonplanar;
+  v.wf.nonconvex = world.wf.nonconvex;
+  v.wf.facets.resize(n);
+  std::vector<std::uint32_t> new_index(n);
+  parallel_chunks(static_cast<int>(n), 8192, threads, [&](int, Chunk r) {
+    for (int k = r.begin; k < r.end; ++k) {
+      const std::uint32_t f = order[static_cast<std::size_t>(k)];
+      v.wf.facets[static_cast<std::size_t>(k)] = world.wf.facets[f];
+      new_index[f] = static_cast<std::uint32_t>(k);
+    }
+  });
+  v.pieces = renumber_facets(world.edges, new_index, threads).pieces;
+  // (Components keep their labels, facet numbers of the input order: only which
+  // facets share one matters.)
+  v.closed.component.resize(n);
+  v.closed.side.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    v.closed.component[k] = world.closed.component[order[k]];
+    v.closed.side[k] = world.closed.side[order[k]];
+  }
+  return v;
 }
 
 }  // namespace
@@ -350,8 +393,7 @@ namespace {
 // faces do not already hide, unless seen through a cap of the near plane's cut
 // (engine/culling.h): they stop being occluders (counted).
 void cull_back_faces(ScreenScene& ss, const CurveMaker& M, const View& view, const std::vector<std::int8_t>& zsign,
-                     Stats& stats, int threads) {
-  const ClosedComponents cc = closed_components(*M.scene, M.wf, M.pieces, threads);
+                     const ClosedComponents& cc, Stats& stats) {
   std::vector<NearCap> caps;
   if (view.perspective) {
     NearPlane np;
@@ -386,7 +428,7 @@ void cull_back_faces(ScreenScene& ss, const CurveMaker& M, const View& view, con
 }  // namespace
 
 ScreenScene make_screen_scene(const Scene& scene, const View& view, const Options& opt,
-                              Stats& stats, bool latent, bool cull) {
+                              Stats& stats, bool latent, bool cull, const WorldScene* world) {
   if (scene.vertices.size() > static_cast<std::size_t>(std::numeric_limits<VertexId>::max()))
     throw std::invalid_argument("the scene has 2^31 vertices or more (vertex ids are 32-bit)");
   auto maker = std::make_shared<CurveMaker>();
@@ -396,9 +438,24 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   M.cos_crease = std::cos(opt.crease_deg * M_PI / 180);
   M.smooth = opt.smooth;
   const int threads = thread_count(opt.threads, scene.faces.size());
-  WorldFacets& wf = M.wf = make_world_facets(scene, threads);
-  order_on_screen(wf, scene, view, threads);
-  std::vector<WorldPiece>& pieces = M.pieces = match_edges(scene, wf, /*cell_bits=*/20, threads);
+  // The world facets in screen order and their edge pieces: from the world
+  // scene where one is kept for many views, else made for this view alone.
+  ClosedComponents closed;
+  if (world) {
+    filter_counts.calls += world->counted.calls;   // (counted as if made for this view)
+    filter_counts.exact += world->counted.exact;
+    InViewOrder v = in_view_order(*world, screen_order(world->wf, scene, view, threads), threads);
+    M.wf = std::move(v.wf);
+    M.pieces = std::move(v.pieces);
+    closed = std::move(v.closed);
+  } else {
+    M.wf = make_world_facets(scene, threads);
+    order_on_screen(M.wf, screen_order(M.wf, scene, view, threads), threads);
+    M.pieces = match_edges(scene, M.wf, /*cell_bits=*/20, threads);
+    if (cull) closed = closed_components(scene, M.wf, M.pieces, threads);
+  }
+  WorldFacets& wf = M.wf;
+  std::vector<WorldPiece>& pieces = M.pieces;
   stats.count("faces_degenerate_dropped", wf.degenerate);
   stats.count("faces_nonplanar_fanned", wf.nonplanar);
   stats.count("faces_nonconvex_triangulated", wf.nonconvex);
@@ -573,7 +630,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   stats.count("culled_outside_view", outside);
   stats.count("culled_edge_on", edge_on);
 
-  if (cull) cull_back_faces(ss, M, view, zsign, stats, threads);
+  if (cull) cull_back_faces(ss, M, view, zsign, closed, stats);
 
   M.occluder.resize(ss.facets.size());
   for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) M.occluder[fi] = ss.facets[fi].occluder;

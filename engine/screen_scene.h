@@ -17,6 +17,7 @@
 #include "engine/small_vec.h"
 #include "engine/visibility.h"
 #include "engine/world_facets.h"
+#include "engine/world_scene.h"
 
 namespace vismap::exact {
 VISMAP_KERNEL_BEGIN
@@ -131,8 +132,11 @@ struct ScreenScene {
 // needs only those near a drawn one: most of a smooth mesh's edges are not).
 // Without `cull`, back faces of closed solids stay occluders and their edges
 // curves (the hidden lines need every edge).
+// With `world` (what no camera changes, kept by a series of views), the facets,
+// edge pieces and closed components are taken from it, not made again: the
+// same screen scene.
 ScreenScene make_screen_scene(const Scene& scene, const View& view, const Options& opt,
-                              Stats& stats, bool latent = false, bool cull = true);
+                              Stats& stats, bool latent = false, bool cull = true, const WorldScene* world = nullptr);
 
 // The world facets the screen facets were made from (index for index), where
 // the scene keeps them (latent curves, or made without culling); else null.

@@ -179,4 +179,50 @@ TEST(EdgePieces, MatchesExactReferenceAtEveryCoarseness) {
   EXPECT_GT(split, 500);
 }
 
+// Many views match the edges once and renumber the facets for each view's order
+// (renumber_facets): that must give exactly what matching the reordered facets
+// gives, pieces, sharers and order, at every coarseness and on several threads.
+TEST(EdgePieces, RenumberedFacetsMatchAsIfMatchedInTheirNewOrder) {
+  std::mt19937_64 rng(1982);
+  std::int64_t compared = 0, moved = 0;
+  for (int iter = 0; iter < 60; ++iter) {
+    const int exps[] = {0, -30, 40, -1000, 1000};
+    const Scene scene = lines_scene(rng, exps[iter % 5]);
+    const WorldFacets wf = make_world_facets(scene);
+    std::vector<std::uint32_t> order(wf.facets.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = static_cast<std::uint32_t>(k);
+    std::shuffle(order.begin(), order.end(), rng);
+    WorldFacets reordered = wf;
+    std::vector<std::uint32_t> new_index(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      reordered.facets[k] = wf.facets[order[k]];
+      new_index[order[k]] = static_cast<std::uint32_t>(k);
+    }
+    for (int bits : {20, 0, 52}) {
+      for (int threads : {1, 3}) {
+        const MatchedEdges got = renumber_facets(match_edges_ranked(scene, wf, bits, threads), new_index, threads);
+        const MatchedEdges want = match_edges_ranked(scene, reordered, bits, threads);
+        ASSERT_EQ(got.pieces.size(), want.pieces.size()) << iter;
+        for (std::size_t i = 0; i < want.pieces.size(); ++i) {
+          const WorldPiece &g = got.pieces[i], &w = want.pieces[i];
+          ASSERT_EQ(std::pair(g.a, g.b), std::pair(w.a, w.b)) << "scene " << iter << ", piece " << i;
+          ASSERT_EQ(g.sharers.size(), w.sharers.size()) << "scene " << iter << ", piece " << i;
+          for (std::size_t k = 0; k < w.sharers.size(); ++k) {
+            EXPECT_EQ(g.sharers[k].facet, w.sharers[k].facet);
+            EXPECT_EQ(g.sharers[k].edge, w.sharers[k].edge);
+            EXPECT_EQ(g.sharers[k].forward, w.sharers[k].forward);
+          }
+          EXPECT_FALSE(got.rank[i] < want.rank[i] || want.rank[i] < got.rank[i]);
+          ++compared;
+        }
+        const MatchedEdges before = match_edges_ranked(scene, wf, bits, threads);
+        for (std::size_t i = 0; i < before.pieces.size(); ++i)
+          moved += before.pieces[i].a != want.pieces[i].a || before.pieces[i].b != want.pieces[i].b;
+      }
+    }
+  }
+  EXPECT_GT(compared, 10000);
+  EXPECT_GT(moved, 1000);   // (the new order is not the old one)
+}
+
 }  // namespace

@@ -1,0 +1,16 @@
+#include "engine/world_scene.h"
+
+namespace vismap::engine {
+
+WorldScene make_world_scene(const Scene& scene, int threads) {
+  const exact::FilterCounts before = exact::filter_counts;
+  WorldScene w;
+  w.wf = make_world_facets(scene, threads);
+  w.edges = match_edges_ranked(scene, w.wf, /*cell_bits=*/20, threads);
+  w.closed = closed_components(scene, w.wf, w.edges.pieces, threads);
+  w.counted.calls = exact::filter_counts.calls - before.calls;
+  w.counted.exact = exact::filter_counts.exact - before.exact;
+  return w;
+}
+
+}  // namespace vismap::engine
