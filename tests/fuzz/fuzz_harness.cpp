@@ -216,6 +216,21 @@ void check_pipeline(const std::uint8_t* data, std::size_t size, Engines engines)
       const std::string flag = "--threads " + std::to_string(threads);
       if (franklin_with(o, flag) != json) die(flag + " changed the map" + repro + "(compare with " + flag + ")\n");
     }
+    // Many views of the scene (ViewSeries: the facets, edge matching and closed
+    // components made once, for another view first): this view's map the same.
+    try {
+      vismap::ViewSeries series(t.scene, t.options, 2);
+      vismap::Camera other;
+      other.dir = vismap::Vec3{-1, -2, -4};
+      series.map(vismap::make_view(other, t.scene));
+      vismap::VisibilityMap map = series.map(view);
+      map.stats = {};
+      if (vismap::to_json(map) != json)
+        die("a second view of a series (after --dir -1,-2,-4) changed the map" + repro +
+            "(compare with --views FILE, FILE holding --dir -1,-2,-4 and this camera)\n");
+    } catch (const std::exception& e) {
+      die(std::string("the franklin engine threw as a series' second view: ") + e.what() + repro);
+    }
     // The lines alone (--no-regions): Franklin computes less, and must write the same segments.
     vismap::Options lines_only = t.options;
     lines_only.regions = false;
