@@ -749,11 +749,28 @@ bool share_an_edge(const Facet& A, const Facet& B) {
 
 namespace {
 
-// Where each facet is listed, for the search of pairs: the cells of its box, and
-// whether it is listed in every one of them (not hidden behind a blocker in any).
+// Where each facet is listed, for the search of pairs: the cells of its box,
+// whether it is listed in every one of them (not hidden behind a blocker in
+// any), and for a facet that is not, in which: a bit per cell of its box.
 struct Listing {
   std::vector<CellRange> range;
   std::vector<char> complete;
+  std::vector<std::size_t> first;   // an incomplete facet's bits: rows of `words` words from bits[first]
+  std::vector<int> words;
+  std::vector<std::uint64_t> bits;
+
+  // Where facet f is listed among the 64 cells of row y from column x on (bit
+  // k: column x + k; x within f's box). Beyond the box's last column: zeros,
+  // or ones for a complete facet (the caller masks them).
+  std::uint64_t listed64(int f, int x, int y) const {
+    if (complete[f]) return ~std::uint64_t(0);
+    const CellRange& r = range[f];
+    const int col = x - r.x0, w = col / 64, off = col % 64, n = words[f];
+    const std::uint64_t* row = bits.data() + first[f] + static_cast<std::size_t>(y - r.y0) * static_cast<std::size_t>(n);
+    std::uint64_t v = row[w] >> off;
+    if (off && w + 1 < n) v |= row[w + 1] << (64 - off);
+    return v;
+  }
 };
 
 Listing listing_of(const Grid& g, const ScreenScene& ss, int threads) {
@@ -769,27 +786,53 @@ Listing listing_of(const Grid& g, const ScreenScene& ss, int threads) {
     if (cell.blocker >= 0) ++listed[cell.blocker];
   }
   l.complete.resize(ss.facets.size());
+  l.first.assign(ss.facets.size(), 0);
+  l.words.assign(ss.facets.size(), 0);
+  std::size_t nbits = 0;
   for (int fi = 0; fi < nf; ++fi) {
     const CellRange& r = l.range[fi];
     l.complete[fi] = listed[fi] == (r.x1 - r.x0 + 1) * (r.y1 - r.y0 + 1);
+    if (l.complete[fi]) continue;
+    l.first[fi] = nbits;
+    l.words[fi] = (r.x1 - r.x0 + 64) / 64;
+    nbits += static_cast<std::size_t>(l.words[fi]) * static_cast<std::size_t>(r.y1 - r.y0 + 1);
   }
+  // The bits, rows of cells in parallel (a row of cells sets only its own row of
+  // each facet's bits).
+  l.bits.assign(nbits, 0);
+  parallel_for(g.Y.cells(), threads, [&](int iy) {
+    for (int ix = 0; ix < g.X.cells(); ++ix) {
+      const Cell& cell = g.at(ix, iy);
+      auto mark = [&](int fi) {
+        const CellRange& r = l.range[fi];
+        if (l.complete[fi] || ix < r.x0 || ix > r.x1 || iy < r.y0 || iy > r.y1) return;
+        const int col = ix - r.x0;
+        l.bits[l.first[fi] + static_cast<std::size_t>(iy - r.y0) * static_cast<std::size_t>(l.words[fi]) +
+               static_cast<std::size_t>(col / 64)] |= std::uint64_t(1) << (col % 64);
+      };
+      for (int fi : cell.facets) mark(fi);
+      if (cell.blocker >= 0) mark(cell.blocker);
+    }
+  });
   return l;
-}
-
-bool listed_in(const Cell& cell, int fi) {
-  return cell.blocker == fi || std::find(cell.facets.begin(), cell.facets.end(), fi) != cell.facets.end();
 }
 
 // Whether cell (ix, iy), which lists facets a and b, is the first in row order
 // to list both: each pair is tested once, there. Where both are listed in every
-// cell of their boxes, that is the first cell the boxes share.
-bool first_common_cell(const Grid& g, const Listing& l, int a, int b, int ix, int iy) {
+// cell of their boxes, that is the first cell the boxes share; else the cells
+// of their common box before (ix, iy) are looked at, 64 at a time.
+bool first_common_cell(const Listing& l, int a, int b, int ix, int iy) {
   const CellRange &ra = l.range[a], &rb = l.range[b];
   const int x0 = std::max(ra.x0, rb.x0), x1 = std::min(ra.x1, rb.x1), y0 = std::max(ra.y0, rb.y0);
   if (l.complete[a] && l.complete[b]) return ix == x0 && iy == y0;
-  for (int y = y0; y <= iy; ++y)
-    for (int x = x0; x <= x1 && (y < iy || x < ix); ++x)
-      if (listed_in(g.at(x, y), a) && listed_in(g.at(x, y), b)) return false;
+  for (int y = y0; y <= iy; ++y) {
+    const int end = y < iy ? x1 : ix - 1;   // (in row iy: the columns before ix)
+    for (int x = x0; x <= end; x += 64) {
+      std::uint64_t both = l.listed64(a, x, y) & l.listed64(b, x, y);
+      if (end - x < 63) both &= (std::uint64_t(1) << (end - x + 1)) - 1;
+      if (both) return false;
+    }
+  }
   return true;
 }
 
@@ -824,7 +867,7 @@ void crossings_in_cell(const Grid& g, const ScreenScene& ss, const Listing& l, i
       // Depth ranges apart: no point of one is at the other's depth.
       if (m.zhi < n.zlo || n.zhi < m.zlo) continue;
       const int fa = std::min(m.fi, n.fi), fb = std::max(m.fi, n.fi);
-      if (!first_common_cell(g, l, fa, fb, ix, iy)) continue;
+      if (!first_common_cell(l, fa, fb, ix, iy)) continue;
       const Facet &A = ss.facets[fa], &B = ss.facets[fb];
       if (share_an_edge(A, B)) continue;
       ++tested;
