@@ -1325,11 +1325,13 @@ namespace {
 struct Probe {
   const P2 *a, *b;            // the piece's ends: m is their midpoint
   Interval ix, iy;            // m
-  const P3 *s, *t;            // the curve's end points: direction t - s
+  const Curve* curve;         // end points s, t: direction t - s
+  const P3 *s, *t;
+  const std::vector<Vec3>* world;   // the input's vertices (the curve's end point ids index them)
   Interval idx, idy;
   bool x_moves = true;        // t.x != s.x (else the curve is vertical)
   mpq_class ex, ey, edx, edy; // exact values, filled on first need
-  bool have_exact = false;
+  bool have_exact = false, have_direction = false;
   void at_midpoint(const P2& pa, const P2& pb) {   // (rounding upward: the caller's UpwardRounding)
     a = &pa;
     b = &pb;
@@ -1337,16 +1339,53 @@ struct Probe {
     iy = (approx_y(pa) + approx_y(pb)) / 2;
     have_exact = false;
   }
+  void need_direction() {   // (the curve's: the same for every piece)
+    if (have_direction) return;
+    NearestRounding nearest;
+    edx = to_mpq(t->x) - to_mpq(s->x);
+    edy = to_mpq(t->y) - to_mpq(s->y);
+    have_direction = true;
+  }
   void need_exact() {
     if (have_exact) return;
+    need_direction();
     NearestRounding nearest;
     ex = (exact_x(*a) + exact_x(*b)) / 2;
     ey = (exact_y(*a) + exact_y(*b)) / 2;
-    edx = to_mpq(t->x) - to_mpq(s->x);
-    edy = to_mpq(t->y) - to_mpq(s->y);
     have_exact = true;
   }
 };
+
+// The exact zeros that the curve's own geometry gives, before m's exact value
+// (a midpoint of crossings: the costliest number here) is built. On scenes of
+// aligned parts (walls of rooms, boxes side by side) curves run along other
+// facets' edges and in other facets' planes everywhere. Each is told on the
+// curve's end points (input vertices mostly, whose exact values are kept), and
+// not counted among the predicates: the count stays that of the questions asked.
+template <class Test>
+bool uncounted(Test&& test) {
+  const exact::FilterCounts before = exact::filter_counts;
+  NearestRounding nearest;
+  const bool yes = test();
+  exact::filter_counts = before;
+  return yes;
+}
+
+// The curve lies on the line p -> q (so m does).
+bool curve_on_line(const P3& p, const P3& q, const Probe& m) {
+  return uncounted([&] {
+    return CGAL::orientation(p.xy(), q.xy(), m.s->xy()) == CGAL::COLLINEAR &&
+           CGAL::orientation(p.xy(), q.xy(), m.t->xy()) == CGAL::COLLINEAR;
+  });
+}
+
+// The curve lies in facet f's plane (its depth is f's at m).
+bool curve_in_plane(const Facet& f, const Probe& m) {
+  return uncounted([&] {
+    return depth_above(*m.s, f, m.world, m.curve->vs) == CGAL::ZERO &&
+           depth_above(*m.t, f, m.world, m.curve->vt) == CGAL::ZERO;
+  });
+}
 
 // Orientation of (p, q, m): positive when m is left of p -> q.
 CGAL::Sign orientation(const P3& p, const P3& q, Probe& m) {
@@ -1356,6 +1395,7 @@ CGAL::Sign orientation(const P3& p, const P3& q, Probe& m) {
                (approx_of(q.y) - approx_of(p.y)) * (m.ix - approx_of(p.x));
       },
       [&]() -> mpq_class {
+        if (curve_on_line(p, q, m)) return 0;
         m.need_exact();
         return (to_mpq(q.x) - to_mpq(p.x)) * (m.ey - to_mpq(p.y)) - (to_mpq(q.y) - to_mpq(p.y)) * (m.ex - to_mpq(p.x));
       });
@@ -1373,7 +1413,7 @@ CGAL::Sign edge_along(const P3& p, const P3& q, Probe& m) {
   return filtered_sign(
       [&] { return (approx_of(q.x) - approx_of(p.x)) * m.idx + (approx_of(q.y) - approx_of(p.y)) * m.idy; },
       [&]() -> mpq_class {
-        m.need_exact();
+        m.need_direction();
         return (to_mpq(q.x) - to_mpq(p.x)) * m.edx + (to_mpq(q.y) - to_mpq(p.y)) * m.edy;
       });
 }
@@ -1407,6 +1447,7 @@ CGAL::Sign depth_order(const Facet& f, const Facet& g, Probe& m) {
       [&] { return (approx_of(f.a) - approx_of(g.a)) * m.ix + (approx_of(f.b) - approx_of(g.b)) * m.iy +
                    (approx_of(f.c) - approx_of(g.c)); },
       [&]() -> mpq_class {
+        if (uncounted([&] { return same_plane(f, g); })) return 0;
         m.need_exact();
         return (to_mpq(f.a) - to_mpq(g.a)) * m.ex + (to_mpq(f.b) - to_mpq(g.b)) * m.ey + (to_mpq(f.c) - to_mpq(g.c));
       });
@@ -1418,7 +1459,7 @@ CGAL::Sign slope_order(const Facet& f, const Facet& g, Probe& m) {
   return filtered_sign(
       [&] { return (approx_of(f.b) - approx_of(g.b)) * m.idx - (approx_of(f.a) - approx_of(g.a)) * m.idy; },
       [&]() -> mpq_class {
-        m.need_exact();
+        m.need_direction();
         return (to_mpq(f.b) - to_mpq(g.b)) * m.edx - (to_mpq(f.a) - to_mpq(g.a)) * m.edy;
       });
 }
@@ -1433,6 +1474,7 @@ CGAL::Sign depth_against_curve(const Facet& f, Probe& m) {
         return approx_of(f.a) * m.ix + approx_of(f.b) * m.iy + approx_of(f.c) - z;
       },
       [&]() -> mpq_class {
+        if (curve_in_plane(f, m)) return 0;
         m.need_exact();
         const mpq_class lambda = m.x_moves ? mpq_class((m.ex - to_mpq(m.s->x)) / m.edx)
                                            : mpq_class((m.ey - to_mpq(m.s->y)) / m.edy);
@@ -1500,8 +1542,10 @@ void classify_curve(const Grid& g, const ScreenScene& ss, int ci, std::vector<P2
   pts.insert(pts.begin(), s);
   pts.push_back(t);
   Probe probe;
+  probe.curve = &cv;
   probe.s = cv.s;
   probe.t = cv.t;
+  probe.world = ss.world;
   {
     CGAL::Protect_FPU_rounding<true> upward;
     probe.idx = approx_of(cv.t->x) - approx_of(cv.s->x);
