@@ -1141,8 +1141,11 @@ struct Cutter {
   void cut(int c, const P2& p) {
     if (in_cell(g, ix, iy, p)) row.at.emplace_back(c, p);
   }
-  // p strictly between the end points of C (p known to be on C's line).
+  // p strictly between the end points of C (p known to be on C's line). (An end
+  // point itself is not: known without a predicate, which on equal coordinates
+  // cannot be settled by its filter.)
   static bool strictly_within(const Curve& C, const P2& p) {
+    if (same_rep(p, C.s->xy()) || same_rep(p, C.t->xy())) return false;
     return CGAL::collinear_are_strictly_ordered_along_line(C.s->xy(), p, C.t->xy());
   }
 
@@ -1214,7 +1217,9 @@ struct Cutter {
     // Common part: the middle two, if C and D really overlap.
     const P2 &lo = pts[1], &hi = pts[2];
     if (!(lo < hi)) return;
-    auto inside = [](const P2& a, const P2& b, const P2& p) { return CGAL::collinear_are_ordered_along_line(a, p, b); };
+    auto inside = [](const P2& a, const P2& b, const P2& p) {   // (an end point is: no predicate)
+      return same_rep(p, a) || same_rep(p, b) || CGAL::collinear_are_ordered_along_line(a, p, b);
+    };
     if (!(inside(cs, ct, lo) && inside(cs, ct, hi) && inside(ds, dt, lo) && inside(ds, dt, hi))) return;
     row.overlaps.emplace_back(ci, di);
     for (const P2& p : {ds, dt}) if (strictly_within(C, p)) cut(ci, p);
