@@ -1199,8 +1199,10 @@ struct Cutter {
     const Curve& C = ss.curves[ci];
     const Facet& F = ss.facets[fi];
     if (!CGAL::do_overlap(C.box, F.box)) return;
+    // The sides first, as filtered predicates (an end point in F's plane, often a
+    // corner of it, is told in the world), the depths only for a crossing.
+    if (depth_above(*C.s, F, ss.world, C.vs) * depth_above(*C.t, F, ss.world, C.vt) >= 0) return;
     const FT ds = C.s->z - F.depth_at(C.s->xy()), dt = C.t->z - F.depth_at(C.t->xy());
-    if (CGAL::sign(ds) * CGAL::sign(dt) >= 0) return;
     const P2 p = C.s->xy() + (ds / (ds - dt)) * (C.t->xy() - C.s->xy());
     if (!strictly_inside(F, p)) return;   // on its boundary: that edge's crossing cuts here
     ++row.crossings;
