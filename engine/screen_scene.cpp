@@ -158,6 +158,28 @@ bool is_crease(const Spanning& f, const Spanning& g, double c) {
   return sd < 0 && se > 0;
 }
 
+// The sign of a facet's projected area in an orthographic view, from the world:
+// with screen x = r.p and y = u.p (plus constants, which cancel around the
+// polygon), sum x_k y_k+1 - x_k+1 y_k = (r x u) . sum p_k x p_k+1, products of
+// doubles, exact on binary floats (no gcd). Zero for the faces seen edge-on,
+// which an axis view of a CAD part or a building is full of and which no
+// filter can settle. (The screen's 2^k changes no sign.)
+int world_area_sign(const View& view, const Scene& scene, const Facet& f) {
+  using M = CGAL::Mpzf;
+  const auto &r = view.m[0], &u = view.m[1];
+  const M nx = M(r[1]) * M(u[2]) - M(r[2]) * M(u[1]), ny = M(r[2]) * M(u[0]) - M(r[0]) * M(u[2]),
+          nz = M(r[0]) * M(u[1]) - M(r[1]) * M(u[0]);
+  M ax(0.0), ay(0.0), az(0.0);
+  const std::size_t n = f.id.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec3 &p = scene.vertices[static_cast<std::size_t>(f.id[k])], &q = scene.vertices[static_cast<std::size_t>(f.id[(k + 1) % n])];
+    ax = ax + (M(p.y) * M(q.z) - M(p.z) * M(q.y));
+    ay = ay + (M(p.z) * M(q.x) - M(p.x) * M(q.z));
+    az = az + (M(p.x) * M(q.y) - M(p.y) * M(q.x));
+  }
+  return (nx * ax + ny * ay + nz * az).sign();
+}
+
 // World facets in the Morton order of their approximate screen centres (doubles:
 // only the order depends on them): order[k] is the facet that goes k-th.
 // Everything built from them (edge pieces, screen facets, curves) then lies in
@@ -566,6 +588,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
           return area2;
         },
         [&]() -> mpq_class {
+          if (!view.perspective) return world_area_sign(view, scene, f);
           mpq_class area2 = 0;
           for (std::size_t k = 0; k < nv; ++k) {
             const P3 &p = f.v[k], &q = f.v[(k + 1) % nv];
