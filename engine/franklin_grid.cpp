@@ -1335,6 +1335,7 @@ struct Probe {
   const Curve* curve;         // end points s, t: direction t - s
   const P3 *s, *t;
   const std::vector<Vec3>* world;   // the input's vertices (the curve's end point ids index them)
+  const std::vector<Facet>* facets; // the screen scene's (the curve's sharers index them)
   Interval idx, idy;
   bool x_moves = true;        // t.x != s.x (else the curve is vertical)
   mpq_class ex, ey, edx, edy; // exact values, filled on first need
@@ -1384,6 +1385,13 @@ bool curve_on_line(const P3& p, const P3& q, const Probe& m) {
     return CGAL::orientation(p.xy(), q.xy(), m.s->xy()) == CGAL::COLLINEAR &&
            CGAL::orientation(p.xy(), q.xy(), m.t->xy()) == CGAL::COLLINEAR;
   });
+}
+
+// Facet f is one of those whose edge the curve is (so the curve is in its plane).
+bool holds_curve(const Facet& f, const Probe& m) {
+  for (int s : m.curve->sharers)
+    if (s >= 0 && &(*m.facets)[static_cast<std::size_t>(s)] == &f) return true;
+  return false;
 }
 
 // The curve lies in facet f's plane (its depth is f's at m).
@@ -1454,6 +1462,7 @@ CGAL::Sign depth_order(const Facet& f, const Facet& g, Probe& m) {
       [&] { return (approx_of(f.a) - approx_of(g.a)) * m.ix + (approx_of(f.b) - approx_of(g.b)) * m.iy +
                    (approx_of(f.c) - approx_of(g.c)); },
       [&]() -> mpq_class {
+        if (holds_curve(f, m) && holds_curve(g, m)) return 0;   // (both hold m, on their common edge)
         if (uncounted([&] { return same_plane(f, g); })) return 0;
         m.need_exact();
         return (to_mpq(f.a) - to_mpq(g.a)) * m.ex + (to_mpq(f.b) - to_mpq(g.b)) * m.ey + (to_mpq(f.c) - to_mpq(g.c));
@@ -1553,6 +1562,7 @@ void classify_curve(const Grid& g, const ScreenScene& ss, int ci, std::vector<P2
   probe.s = cv.s;
   probe.t = cv.t;
   probe.world = ss.world;
+  probe.facets = &ss.facets;
   {
     CGAL::Protect_FPU_rounding<true> upward;
     probe.idx = approx_of(cv.t->x) - approx_of(cv.s->x);
