@@ -142,6 +142,22 @@ CGAL::Sign filtered_sign(OnIntervals&& approx, OnRationals&& exact) {
   return static_cast<CGAL::Sign>(sgn(v));
 }
 
+// sign((q - p) x (r - p)) for rational points, with no gcd: the determinant of
+// the rows (x, y, 1), each row multiplied by its two (positive) denominators,
+// on integers. (Rational arithmetic would normalise after every operation.)
+inline int orient_sign(const mpq_class& px, const mpq_class& py, const mpq_class& qx, const mpq_class& qy,
+                       const mpq_class& rx, const mpq_class& ry) {
+  struct Row {
+    mpz_class x, y, w;
+  };
+  auto row = [](const mpq_class& x, const mpq_class& y) {
+    return Row{x.get_num() * y.get_den(), y.get_num() * x.get_den(), x.get_den() * y.get_den()};
+  };
+  const Row a = row(px, py), b = row(qx, qy), c = row(rx, ry);
+  const mpz_class d = a.x * (b.y * c.w - b.w * c.y) - a.y * (b.x * c.w - b.w * c.x) + a.w * (b.x * c.y - b.y * c.x);
+  return sgn(d);
+}
+
 // Screen-space point with its depth: (x, y) on the screen, z = depth (smaller = nearer).
 // The point (x, y) is built once: each lazy point made costs an allocation.
 struct P3 {

@@ -78,9 +78,7 @@ CGAL::Sign orientation(const P3& u, const P3& v, const Corner& p) {
         return (approx_of(v.x) - approx_of(u.x)) * (p.y - approx_of(u.y)) -
                (approx_of(v.y) - approx_of(u.y)) * (p.x - approx_of(u.x));
       },
-      [&]() -> mpq_class {
-        return (to_mpq(v.x) - to_mpq(u.x)) * (p.y - to_mpq(u.y)) - (to_mpq(v.y) - to_mpq(u.y)) * (p.x - to_mpq(u.x));
-      });
+      [&]() -> mpq_class { return orient_sign(to_mpq(u.x), to_mpq(u.y), to_mpq(v.x), to_mpq(v.y), p.x, p.y); });
 }
 
 bool in_cell(const Grid& g, int ix, int iy, const P2& p) {   // (no lazy coordinate built)
@@ -1412,7 +1410,7 @@ CGAL::Sign orientation(const P3& p, const P3& q, Probe& m) {
       [&]() -> mpq_class {
         if (curve_on_line(p, q, m)) return 0;
         m.need_exact();
-        return (to_mpq(q.x) - to_mpq(p.x)) * (m.ey - to_mpq(p.y)) - (to_mpq(q.y) - to_mpq(p.y)) * (m.ex - to_mpq(p.x));
+        return orient_sign(to_mpq(p.x), to_mpq(p.y), to_mpq(q.x), to_mpq(q.y), m.ex, m.ey);
       });
 }
 
@@ -1540,6 +1538,7 @@ void classify_curve(const Grid& g, const ScreenScene& ss, int ci, std::vector<P2
                          }) != CGAL::NEGATIVE;
   const bool increasing = (use_x ? CGAL::compare(cv.s->x, cv.t->x) : CGAL::compare(cv.s->y, cv.t->y)) == CGAL::SMALLER;
   auto key_less = [&](const P2& a, const P2& b) {   // predicates: no coordinates built
+    if (same_rep(a, b)) return false;   // (a point cut twice is often one number)
     return (use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b)) == (increasing ? CGAL::SMALLER : CGAL::LARGER);
   };
   // The cut points are shared with the curves cut at them, classified on other
@@ -1551,7 +1550,7 @@ void classify_curve(const Grid& g, const ScreenScene& ss, int ci, std::vector<P2
   std::sort(pts.begin(), pts.end(), key_less);
   // Points of one curve are equal when their dominant coordinates are.
   auto same_key = [&](const P2& a, const P2& b) {
-    return (use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b)) == CGAL::EQUAL;
+    return same_rep(a, b) || (use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b)) == CGAL::EQUAL;
   };
   pts.erase(std::unique(pts.begin(), pts.end(), same_key), pts.end());
   exact::filter_counts = before_sort;

@@ -38,8 +38,7 @@ inline CGAL::Sign orient(const P3& p, const P3& q, const P3& r) {
                (q.y.approx() - p.y.approx()) * (r.x.approx() - p.x.approx());
       },
       [&]() -> mpq_class {
-        return (to_mpq(q.x) - to_mpq(p.x)) * (to_mpq(r.y) - to_mpq(p.y)) -
-               (to_mpq(q.y) - to_mpq(p.y)) * (to_mpq(r.x) - to_mpq(p.x));
+        return orient_sign(to_mpq(p.x), to_mpq(p.y), to_mpq(q.x), to_mpq(q.y), to_mpq(r.x), to_mpq(r.y));
       });
 }
 

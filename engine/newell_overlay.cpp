@@ -495,7 +495,10 @@ std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Frag
     std::vector<P2>& pts = cuts[ci];
     const bool use_x = CGAL::compare(CGAL::abs(cv.t->x - cv.s->x), CGAL::abs(cv.t->y - cv.s->y)) != CGAL::SMALLER;
     const auto forward = use_x ? CGAL::compare_x(s, t) : CGAL::compare_y(s, t);
-    auto along = [&](const P2& a, const P2& b) { return use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b); };
+    auto along = [&](const P2& a, const P2& b) {   // (a point cut twice is often one number: equal by identity)
+      if (exact::same_rep(a, b)) return CGAL::EQUAL;
+      return use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b);
+    };
     std::sort(pts.begin(), pts.end(), [&](const P2& a, const P2& b) { return along(a, b) == forward; });
     // (On one line, equal along the dominant axis is the same point.)
     pts.erase(std::unique(pts.begin(), pts.end(), [&](const P2& a, const P2& b) { return along(a, b) == CGAL::EQUAL; }),
