@@ -135,14 +135,36 @@ std::array<std::pair<FT, FT>, 2> chord(const Points& v, const Line& f) {
 // there, and the facet across the diagonal, in front, reports nothing, so the
 // crossing is found once), or kApart.
 constexpr int kCrosses = -2, kApart = -1;
-int meets_plane(const Facet& F, const Facet& G) {
-  // (A fan's pieces need not lie on either side of a diagonal: only Newell's tests.)
-  if (!F.may_cross_at_diagonal()) return sides_of_plane(F.v, {}, -1, G) == kBoth ? kCrosses : kApart;
-  const std::size_t n = F.v.size();   // (a triangle, cut or not: n <= 4)
+int meets_plane(const Facet& F, const Facet& G, const std::vector<Vec3>* world) {
+  const std::size_t n = F.v.size();
   CGAL::Sign side[8];
   int sides = 0;
-  for (std::size_t k = 0; k < n; ++k) {   // each corner's side once
-    side[k] = is_vertex_of(F.v[k], G) ? CGAL::ZERO : plane_side(F.v[k], G);
+  // A corner's side: none for G's own vertex; else on intervals, and where
+  // they cannot tell, an input vertex in G's plane (coplanar neighbours: the
+  // zero no filter settles) is told in the world before any rational is made.
+  auto side_of = [&](std::size_t k) {
+    if (is_vertex_of(F.v[k], G)) return CGAL::ZERO;
+    return filtered_sign(
+        [&] {
+          const P3& p = F.v[k];
+          return p.z.approx() - (G.a.approx() * p.x.approx() + G.b.approx() * p.y.approx() + G.c.approx());
+        },
+        [&]() -> mpq_class {
+          if (world && F.id[k] >= 0 && in_world_plane(*world, F.id[k], G)) return 0;
+          const P3& p = F.v[k];
+          return to_mpq(p.z) - (to_mpq(G.a) * to_mpq(p.x) + to_mpq(G.b) * to_mpq(p.y) + to_mpq(G.c));
+        });
+  };
+  // (A fan's pieces need not lie on either side of a diagonal: only Newell's tests.)
+  if (!F.may_cross_at_diagonal()) {
+    for (std::size_t k = 0; k < n && sides != kBoth; ++k) {
+      const CGAL::Sign c = side_of(k);
+      sides |= c == CGAL::POSITIVE ? kPos : c == CGAL::NEGATIVE ? kNeg : 0;
+    }
+    return sides == kBoth ? kCrosses : kApart;
+  }
+  for (std::size_t k = 0; k < n; ++k) {   // each corner's side once (a triangle, cut or not: n <= 4)
+    side[k] = side_of(k);
     sides |= side[k] == CGAL::POSITIVE ? kPos : side[k] == CGAL::NEGATIVE ? kNeg : 0;
   }
   if (sides == kBoth) return kCrosses;
@@ -162,10 +184,10 @@ std::array<std::pair<FT, FT>, 2> chord_of(const Facet& F, int meets, const Line&
 // Where facets A and B cross in 3D strictly inside both projections: each
 // crosses the other's plane (meets_plane), and the chords the planes' crossing
 // line cuts from them overlap in more than a point.
-bool piercing_segment(const Facet& A, const Facet& B, P3& p, P3& q) {
-  const int ma = meets_plane(A, B);
+bool piercing_segment(const Facet& A, const Facet& B, const std::vector<Vec3>* world, P3& p, P3& q) {
+  const int ma = meets_plane(A, B, world);
   if (ma == kApart) return false;
-  const int mb = meets_plane(B, A);
+  const int mb = meets_plane(B, A, world);
   if (mb == kApart) return false;
   const Line f = plane_crossing(A, B);
   auto a = chord_of(A, ma, f), b = chord_of(B, mb, f);
@@ -388,7 +410,7 @@ void add_piercing_lines(ScreenScene& ss, Stats& stats) {
     if (A.face == B.face) return;
     ++tested;
     P3 p, q;
-    if (!piercing_segment(A, B, p, q)) return;
+    if (!piercing_segment(A, B, ss.world, p, q)) return;
     ++found;
     lines.push_back(intersection_curve(p, q, fa, fb, A.face, B.face, line_ends));
   });

@@ -282,6 +282,26 @@ InViewOrder in_view_order(const WorldScene& world, const std::vector<std::uint32
 
 }  // namespace
 
+// Whether input vertex v lies in the plane of facet f, decided in world space
+// (the projection keeps planes and incidences) on binary floats, with no gcd:
+// det(q - o, r - o, v - o) for corners o, q, r of f that span its plane. False
+// when f has no three such corners in the input (cut at the near plane).
+bool in_world_plane(const std::vector<Vec3>& input, long v, const Facet& f) {
+  using M = CGAL::Mpzf;
+  auto at = [&](long id) -> const Vec3& { return input[static_cast<std::size_t>(id)]; };
+  const std::size_t m = f.id.size();
+  std::size_t k0 = 0;
+  while (k0 < m && f.id[k0] < 0) ++k0;
+  for (std::size_t k = k0 + 1; k + 1 < m; ++k) {
+    if (f.id[k] < 0 || f.id[k + 1] < 0) continue;
+    const Vec3 &o = at(f.id[k0]), &q = at(f.id[k]), &r = at(f.id[k + 1]);
+    const auto n = world::normal_of<M>(o, q, r);
+    if (n[0].sign() == 0 && n[1].sign() == 0 && n[2].sign() == 0) continue;   // collinear corners
+    return world::det<M>(o, q, r, at(v)).sign() == 0;
+  }
+  return false;
+}
+
 std::vector<SmallInts> faces_lists(const std::vector<Curve>& curves, int threads) {
   std::vector<SmallInts> out(curves.size());
   parallel_chunks(static_cast<int>(curves.size()), 8192, threads, [&](int, Chunk r) {

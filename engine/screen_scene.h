@@ -138,6 +138,10 @@ struct ScreenScene {
 ScreenScene make_screen_scene(const Scene& scene, const View& view, const Options& opt,
                               Stats& stats, bool latent = false, bool cull = true, const WorldScene* world = nullptr);
 
+// Whether input vertex v lies in the plane of facet f, in the world, exactly (no
+// gcd): false also where f has no three input corners spanning its plane.
+bool in_world_plane(const std::vector<Vec3>& input, long v, const Facet& f);
+
 // The world facets the screen facets were made from (index for index), where
 // the scene keeps them (latent curves, or made without culling); else null.
 const WorldFacets* world_facets_of(const ScreenScene& ss);
