@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages vismap needs, only those missing.
 set -euo pipefail
-pkgs=(cmake g++ make pkg-config libcgal-dev libgmp-dev libmpfr-dev libboost-dev libgtest-dev libbenchmark-dev
+pkgs=(cmake g++ make time pkg-config libcgal-dev libgmp-dev libmpfr-dev libboost-dev libgtest-dev libbenchmark-dev
       libmimalloc-dev libcairo2-dev python3 python3-dev pybind11-dev python3-numpy   # (the Python module)
       python3-pytest python3-matplotlib python3-ezdxf poppler-utils librsvg2-bin)   # (the tests: pytest, the README's example, drawings read back)
 missing=()
