@@ -1,6 +1,7 @@
 #include "engine/edge_pieces.h"
 
 #include <CGAL/Interval_nt.h>
+#include <CGAL/Mpzf.h>
 #include <gmpxx.h>
 
 #include <algorithm>
@@ -24,32 +25,42 @@ struct Edge {
 double coord(const Vec3& v, int k) { return k == 0 ? v.x : k == 1 ? v.y : v.z; }
 
 // The supporting line of p->q as an exact canonical key: the first axis k along
-// which the line moves, the slopes d_j/d_k and the offsets at x_k = 0.
+// which the line moves, the slopes d_j/d_k and the offsets at x_k = 0, as
+// fractions over one positive denominator d_k, in binary floats: sums and
+// products of the input's doubles (CGAL::Mpzf, no gcd), compared by cross
+// multiplication. (The same values whichever end the line is taken from.)
 struct LineKey {
   int axis = 0;
-  std::array<mpq_class, 4> r;
+  std::array<CGAL::Mpzf, 4> num;   // r[i] = num[i] / den: the two slopes, then the two offsets
+  CGAL::Mpzf den;                  // > 0
 };
 
 LineKey line_key(const Vec3& p, const Vec3& q, int k) {
+  using M = CGAL::Mpzf;
   LineKey key;
   key.axis = k;
-  mpq_class pk(coord(p, k)), dk = mpq_class(coord(q, k)) - pk;
+  const M pk(coord(p, k)), qk(coord(q, k));
+  M d = qk - pk;
   int slot = 0;
   for (int j = 0; j < 3; ++j) {
     if (j == k) continue;
-    mpq_class pj(coord(p, j));
-    mpq_class slope = (mpq_class(coord(q, j)) - pj) / dk;
-    key.r[slot] = slope;
-    key.r[slot + 2] = pj - pk * slope;
+    const M pj(coord(p, j)), qj(coord(q, j));
+    key.num[slot] = qj - pj;                      // slope (q_j - p_j) / d
+    key.num[slot + 2] = pj * qk - pk * qj;        // offset p_j - p_k slope = (p_j q_k - p_k q_j) / d
     ++slot;
   }
+  if (d.sign() < 0) {
+    d = M(0.0) - d;
+    for (M& x : key.num) x = M(0.0) - x;
+  }
+  key.den = d;
   return key;
 }
 
 bool key_less(const LineKey& a, const LineKey& b) {
   if (a.axis != b.axis) return a.axis < b.axis;
   for (int i = 0; i < 4; ++i) {
-    int c = cmp(a.r[i], b.r[i]);
+    const int c = (a.num[i] * b.den - b.num[i] * a.den).sign();
     if (c) return c < 0;
   }
   return false;
@@ -80,7 +91,11 @@ std::uint64_t mix(std::uint64_t h, std::uint64_t x) {
 
 std::uint64_t cells_of(const LineKey& key, const Cells& cells) {
   std::uint64_t h = mix(0, static_cast<std::uint64_t>(key.axis));
-  for (const mpq_class& x : key.r) h = mix(h, cells.of(x.get_d()));   // (get_d truncates)
+  const mpq_class den(key.den);
+  for (const CGAL::Mpzf& n : key.num) {
+    const mpq_class x = mpq_class(n) / den;
+    h = mix(h, cells.of(x.get_d()));   // (get_d truncates)
+  }
   return h;
 }
 
