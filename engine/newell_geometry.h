@@ -99,11 +99,15 @@ inline int sides_of(const std::vector<P3>& v, const Line& f) {
   return s;
 }
 
-// sign(p.z - depth of G at p): positive when p is behind G's plane.
-inline CGAL::Sign plane_side(const P3& p, const Facet& G) {
+// sign(p.z - depth of G at p): positive when p is behind G's plane. Where p is
+// input vertex `id` (else -1) and the intervals cannot tell, p in G's plane
+// (coplanar neighbours: the zero no filter settles) is told in the `world`
+// before any rational is made.
+inline CGAL::Sign plane_side(const P3& p, const Facet& G, const std::vector<Vec3>* world = nullptr, long id = -1) {
   return filtered_sign(
       [&] { return p.z.approx() - (G.a.approx() * p.x.approx() + G.b.approx() * p.y.approx() + G.c.approx()); },
       [&]() -> mpq_class {
+        if (world && id >= 0 && in_world_plane(*world, id, G)) return 0;
         return to_mpq(p.z) - (to_mpq(G.a) * to_mpq(p.x) + to_mpq(G.b) * to_mpq(p.y) + to_mpq(G.c));
       });
 }

@@ -139,21 +139,10 @@ int meets_plane(const Facet& F, const Facet& G, const std::vector<Vec3>* world) 
   const std::size_t n = F.v.size();
   CGAL::Sign side[8];
   int sides = 0;
-  // A corner's side: none for G's own vertex; else on intervals, and where
-  // they cannot tell, an input vertex in G's plane (coplanar neighbours: the
-  // zero no filter settles) is told in the world before any rational is made.
+  // A corner's side: none for G's own vertex (an input vertex in G's plane is
+  // told in the world, plane_side).
   auto side_of = [&](std::size_t k) {
-    if (is_vertex_of(F.v[k], G)) return CGAL::ZERO;
-    return filtered_sign(
-        [&] {
-          const P3& p = F.v[k];
-          return p.z.approx() - (G.a.approx() * p.x.approx() + G.b.approx() * p.y.approx() + G.c.approx());
-        },
-        [&]() -> mpq_class {
-          if (world && F.id[k] >= 0 && in_world_plane(*world, F.id[k], G)) return 0;
-          const P3& p = F.v[k];
-          return to_mpq(p.z) - (to_mpq(G.a) * to_mpq(p.x) + to_mpq(G.b) * to_mpq(p.y) + to_mpq(G.c));
-        });
+    return is_vertex_of(F.v[k], G) ? CGAL::ZERO : plane_side(F.v[k], G, world, F.id[k]);
   };
   // (A fan's pieces need not lie on either side of a diagonal: only Newell's tests.)
   if (!F.may_cross_at_diagonal()) {
