@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "engine/franklin_grid.h"
 #include "engine/newell_geometry.h"
 #include "engine/overlap_cuts.h"
 
@@ -107,90 +108,6 @@ class BoxGrid {
   double x0_ = 0, y0_ = 0, w_ = 1, h_ = 1;
   std::vector<std::vector<int>> cells_;
 };
-
-// ---- intersection lines ------------------------------------------------------------
-
-// The chord the line f = 0 cuts from a convex polygon that has vertices strictly
-// on both sides of it: its two boundary points (vertices on the line, or where
-// edges cross it), as exact leaves (x, y).
-template <class Points>
-std::array<std::pair<FT, FT>, 2> chord(const Points& v, const Line& f) {
-  const std::size_t n = v.size();
-  std::vector<CGAL::Sign> sg(n);
-  for (std::size_t k = 0; k < n; ++k) sg[k] = f.sign_at(v[k]);
-  std::array<std::pair<FT, FT>, 2> ends;
-  int found = 0;
-  for (std::size_t k = 0; k < n && found < 2; ++k) {
-    const std::size_t k1 = (k + 1) % n;
-    if (sg[k] == CGAL::ZERO) ends[found++] = {v[k].x, v[k].y};
-    else if (sg[k] * sg[k1] < 0) ends[found++] = edge_crossing(v[k], v[k1], f);
-  }
-  if (found != 2) throw std::logic_error("newell: a crossing line meets a convex facet in other than two points");
-  return ends;
-}
-
-// How facet F meets G's plane: kCrosses (vertices strictly on both sides), the
-// index k of a diagonal of the simple planar polygon F splits along which F, behind G's plane,
-// touches it (the polygon goes on past it to the front: it crosses G's plane
-// there, and the facet across the diagonal, in front, reports nothing, so the
-// crossing is found once), or kApart.
-constexpr int kCrosses = -2, kApart = -1;
-int meets_plane(const Facet& F, const Facet& G, const std::vector<Vec3>* world) {
-  const std::size_t n = F.v.size();
-  CGAL::Sign side[8];
-  int sides = 0;
-  // A corner's side: none for G's own vertex (an input vertex in G's plane is
-  // told in the world, plane_side).
-  auto side_of = [&](std::size_t k) {
-    return is_vertex_of(F.v[k], G) ? CGAL::ZERO : plane_side(F.v[k], G, world, F.id[k]);
-  };
-  // (A fan's pieces need not lie on either side of a diagonal: only Newell's tests.)
-  if (!F.may_cross_at_diagonal()) {
-    for (std::size_t k = 0; k < n && sides != kBoth; ++k) {
-      const CGAL::Sign c = side_of(k);
-      sides |= c == CGAL::POSITIVE ? kPos : c == CGAL::NEGATIVE ? kNeg : 0;
-    }
-    return sides == kBoth ? kCrosses : kApart;
-  }
-  for (std::size_t k = 0; k < n; ++k) {   // each corner's side once (a triangle, cut or not: n <= 4)
-    side[k] = side_of(k);
-    sides |= side[k] == CGAL::POSITIVE ? kPos : side[k] == CGAL::NEGATIVE ? kNeg : 0;
-  }
-  if (sides == kBoth) return kCrosses;
-  for (std::size_t k = 0; k < n && sides == kBehind; ++k)
-    if (F.on_diagonal(k) && side[k] == CGAL::ZERO && side[(k + 1) % n] == CGAL::ZERO) return static_cast<int>(k);
-  return kApart;
-}
-
-// The two ends of the chord facet F cuts from the planes' crossing line f: the
-// ends of its diagonal k where it lies along f, else chord().
-std::array<std::pair<FT, FT>, 2> chord_of(const Facet& F, int meets, const Line& f) {
-  if (meets == kCrosses) return chord(F.v, f);
-  const P3 &s = F.v[static_cast<std::size_t>(meets)], &t = F.v[(static_cast<std::size_t>(meets) + 1) % F.v.size()];
-  return {std::pair<FT, FT>{s.x, s.y}, std::pair<FT, FT>{t.x, t.y}};
-}
-
-// Where facets A and B cross in 3D strictly inside both projections: each
-// crosses the other's plane (meets_plane), and the chords the planes' crossing
-// line cuts from them overlap in more than a point.
-bool piercing_segment(const Facet& A, const Facet& B, const std::vector<Vec3>* world, P3& p, P3& q) {
-  const int ma = meets_plane(A, B, world);
-  if (ma == kApart) return false;
-  const int mb = meets_plane(B, A, world);
-  if (mb == kApart) return false;
-  const Line f = plane_crossing(A, B);
-  auto a = chord_of(A, ma, f), b = chord_of(B, mb, f);
-  // Order along the line, direction (-f.b, f.a).
-  auto key = [&](const std::pair<FT, FT>& x) { return f.a * x.second - f.b * x.first; };
-  if (key(a[1]) < key(a[0])) std::swap(a[0], a[1]);
-  if (key(b[1]) < key(b[0])) std::swap(b[0], b[1]);
-  const auto& lo = key(a[0]) < key(b[0]) ? b[0] : a[0];   // the later start
-  const auto& hi = key(a[1]) < key(b[1]) ? a[1] : b[1];   // the earlier end
-  if (!(key(lo) < key(hi))) return false;
-  p = P3{lo.first, lo.second, leaf(depth_of(A, lo.first, lo.second))};
-  q = P3{hi.first, hi.second, leaf(depth_of(A, hi.first, hi.second))};
-  return true;
-}
 
 // ---- cutting curves ----------------------------------------------------------------
 
@@ -396,12 +313,14 @@ void add_piercing_lines(ScreenScene& ss, Stats& stats) {
   BoxGrid(boxes).pairs([&](int i, int j) {
     const int fa = occ[i], fb = occ[j];
     const Facet &A = ss.facets[fa], &B = ss.facets[fb];
-    if (A.face == B.face) return;
+    // (Franklin's test of a pair, franklin_grid.h: neighbours on a mesh are told
+    // by their shared edge or corner, or on doubles in the world.)
+    if (A.face == B.face || A.zhi < B.zlo || B.zhi < A.zlo || share_an_edge(A, B)) return;
     ++tested;
-    P3 p, q;
-    if (!piercing_segment(A, B, ss.world, p, q)) return;
+    P2 p, q;
+    if (!intersection_segment(A, B, ss.world, p, q)) return;
     ++found;
-    lines.push_back(intersection_curve(p, q, fa, fb, A.face, B.face, line_ends));
+    lines.push_back(crossing_curve(A, B, fa, fb, p, q, line_ends));
   });
   for (auto& c : lines) ss.curves.push_back(std::move(c));
   stats.count("facet_pairs_tested", tested);
