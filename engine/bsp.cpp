@@ -118,25 +118,42 @@ class Images {
   }
 };
 
-// Fragment x of facet F on the screen: its corners in front of the near plane
-// and where its edges cross it, counter-clockwise; no two equal consecutive
-// points. Empty where nothing of it is left.
-std::vector<P3> screen_polygon(const BspTree::Fragment& x, const Facet& F, Images& images) {
-  std::vector<P3> v;
-  auto add = [&](const P3& q) {
-    if (v.empty() || !(v.back().xy() == q.xy())) v.push_back(q);
+// Fragment x of facet F on the screen, as `out`'s corners: those in front of the
+// near plane and where its edges cross it, counter-clockwise; no two equal
+// consecutive points. Empty where nothing of it is left. Each edge keeps the
+// facet edge it lies on (a corner left out as equal to the one before it: the
+// corner kept lies on the edges of both).
+void screen_polygon(const BspTree::Fragment& x, const Facet& F, Images& images, Fragment& out) {
+  std::vector<P3>& v = out.v;
+  std::vector<std::uint64_t> on;   // which of x's edges each corner lies on
+  auto add = [&](const P3& q, std::uint64_t edges) {
+    if (v.empty() || !(v.back().xy() == q.xy())) {
+      v.push_back(q);
+      on.push_back(0);
+    }
+    on.back() |= edges;
   };
   const std::size_t n = x.corners.size();
   for (std::size_t k = 0; k < n; ++k) {
     const std::uint32_t a = x.corners[k], b = x.corners[(k + 1) % n];
     const bool fa = images.in_front(a, F), fb = images.in_front(b, F);
-    if (fa) add(images.of(a, F));
-    if (fa != fb) add(fa ? images.near_cut(a, b) : images.near_cut(b, a));
+    if (fa) add(images.of(a, F), on_corner(k, n));
+    if (fa != fb) add(fa ? images.near_cut(a, b) : images.near_cut(b, a), on_edge(k));
   }
-  while (v.size() > 1 && v.front().xy() == v.back().xy()) v.pop_back();
-  if (v.size() < 3) v.clear();
-  if (F.facing == Facing::Back) std::reverse(v.begin(), v.end());   // counter-clockwise
-  return v;
+  while (v.size() > 1 && v.front().xy() == v.back().xy()) {
+    v.pop_back();
+    on.front() |= on.back();
+    on.pop_back();
+  }
+  if (v.size() < 3) {
+    v.clear();
+    return;
+  }
+  out.edge = part_edges(on, x.edge);
+  if (F.facing == Facing::Back) {   // counter-clockwise
+    std::reverse(v.begin(), v.end());
+    out.edge = reversed_edges(out.edge);
+  }
 }
 
 // Each group's bounds on the screen: its occluding facets' boxes (x0 > x1: none).
@@ -163,7 +180,8 @@ void append_fragments(const BspTree& tree, const Scene& scene, const View& view,
     const int fi = screen[x.facet];
     const Facet& F = ss.facets[static_cast<std::size_t>(fi)];
     if (!F.occluder) continue;
-    Fragment f{fi, F.face, screen_polygon(x, F, images), {}, {}};
+    Fragment f{fi, F.face, {}, {}, {}, {}};
+    screen_polygon(x, F, images, f);
     if (f.v.empty()) continue;
     f.cut_on.assign(f.v.size(), -1);
     f.box = newell::box_of(f.v);

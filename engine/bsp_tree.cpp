@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdlib>
 
+#include "engine/part_edges.h"
 #include "engine/world_exact.h"
 
 namespace vismap::engine {
@@ -47,7 +48,10 @@ class Builder {
     for (std::uint32_t f : facets) {
       BspTree::Fragment x;
       x.facet = f;
-      for (auto id : t_.facets->facets[f].v) x.corners.push_back(point_of_vertex(id));
+      for (auto id : t_.facets->facets[f].v) {
+        x.edge.push_back(static_cast<int>(x.corners.size()));
+        x.corners.push_back(point_of_vertex(id));
+      }
       all.push_back(static_cast<std::uint32_t>(t_.fragments.size()));
       t_.fragments.push_back(std::move(x));
     }
@@ -230,17 +234,23 @@ class Builder {
     BspTree::Fragment f, b;
     f.facet = b.facet = t_.fragments[fi].facet;
     const std::vector<std::uint32_t> c = t_.fragments[fi].corners;   // (a copy: fi is overwritten)
+    const std::vector<int> edge = t_.fragments[fi].edge;
     const std::size_t n = c.size();
+    std::vector<std::uint64_t> f_on, b_on;   // which edges of the cut fragment each corner lies on
     for (std::size_t k = 0; k < n; ++k) {
       const std::size_t k1 = (k + 1) % n;
-      if (sg[k] >= 0) f.corners.push_back(c[k]);
-      if (sg[k] <= 0) b.corners.push_back(c[k]);
+      if (sg[k] >= 0) { f.corners.push_back(c[k]); f_on.push_back(on_corner(k, n)); }
+      if (sg[k] <= 0) { b.corners.push_back(c[k]); b_on.push_back(on_corner(k, n)); }
       if (sg[k] * sg[k1] < 0) {
         const std::uint32_t x = cut_point(c[k], c[k1], pl, span);
         f.corners.push_back(x);
         b.corners.push_back(x);
+        f_on.push_back(on_edge(k));
+        b_on.push_back(on_edge(k));
       }
     }
+    f.edge = part_edges(f_on, edge);
+    b.edge = part_edges(b_on, edge);
     // (The front part takes the cut fragment's place: the tree keeps only live fragments.)
     t_.fragments[fi] = std::move(f);
     t_.fragments.push_back(std::move(b));

@@ -31,6 +31,8 @@ struct BspTree {
   struct Fragment {
     std::uint32_t facet = 0;   // index in `facets` (make_world_facets' order)
     std::vector<std::uint32_t> corners;   // indices in `points`
+    std::vector<int> edge;   // per edge corners[k] -> corners[k+1]: the edge of its world facet
+                             // (v[j] -> v[j+1]) whose line holds it, or -1 (a splitting plane's)
   };
   // A node's plane is its first fragment's facet's, spanned by three of its
   // corners (input vertices); `on` lists the fragments in that plane.

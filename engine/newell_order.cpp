@@ -66,23 +66,27 @@ std::pair<Fragment, Fragment> split_fragment(const Fragment& X, const Line& f, c
   const std::size_t n = X.v.size();
   std::vector<int> sg(n);
   for (std::size_t k = 0; k < n; ++k) sg[k] = plane >= 0 && X.cut_on[k] == plane ? 0 : f.sign_at(X.v[k]);
-  Fragment pos{X.facet, X.face, {}, {}, {}}, neg{X.facet, X.face, {}, {}, {}};
-  auto put = [](Fragment& y, const P3& p, int on) {
+  Fragment pos{X.facet, X.face, {}, {}, {}, {}}, neg{X.facet, X.face, {}, {}, {}, {}};
+  std::vector<std::uint64_t> pos_on, neg_on;   // which of X's edges each corner lies on
+  auto put = [](Fragment& y, std::vector<std::uint64_t>& on, const P3& p, int cut, std::uint64_t edges) {
     y.v.push_back(p);
-    y.cut_on.push_back(on);
+    y.cut_on.push_back(cut);
+    on.push_back(edges);
   };
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t k1 = (k + 1) % n;
     const P3 &a = X.v[k], &b = X.v[k1];
-    if (sg[k] >= 0) put(pos, a, X.cut_on[k]);
-    if (sg[k] <= 0) put(neg, a, X.cut_on[k]);
+    if (sg[k] >= 0) put(pos, pos_on, a, X.cut_on[k], on_corner(k, n));
+    if (sg[k] <= 0) put(neg, neg_on, a, X.cut_on[k], on_corner(k, n));
     if (sg[k] * sg[k1] < 0) {   // the line crosses this edge strictly inside
       const auto [x, y] = edge_crossing(a, b, f);
       const P3 c{x, y, leaf(depth_of(F, x, y))};
-      put(pos, c, plane);
-      put(neg, c, plane);
+      put(pos, pos_on, c, plane, on_edge(k));
+      put(neg, neg_on, c, plane, on_edge(k));
     }
   }
+  pos.edge = part_edges(pos_on, X.edge);
+  neg.edge = part_edges(neg_on, X.edge);
   pos.box = box_of(pos.v);
   neg.box = box_of(neg.v);
   return {std::move(pos), std::move(neg)};
@@ -96,11 +100,30 @@ class DepthSort {
     for (int fi = 0; fi < static_cast<int>(ss_.facets.size()); ++fi) {
       const Facet& f = ss_.facets[fi];
       if (!f.occluder) continue;
-      Fragment x{fi, f.face, {}, {}, f.box};
-      for (const P3& p : f.v)
-        if (x.v.empty() || !(x.v.back().xy() == p.xy())) x.v.push_back(p);
-      while (x.v.size() > 1 && x.v.front().xy() == x.v.back().xy()) x.v.pop_back();
-      if (f.facing == Facing::Back) std::reverse(x.v.begin(), x.v.end());   // counter-clockwise
+      Fragment x{fi, f.face, {}, {}, {}, f.box};
+      // (A corner equal on the screen to the one before it is left out: the
+      // corner kept lies on the edges of both.)
+      const std::size_t n = f.v.size();
+      std::vector<std::uint64_t> on;   // which of f's edges each corner lies on
+      for (std::size_t k = 0; k < n; ++k) {
+        if (x.v.empty() || !(x.v.back().xy() == f.v[k].xy())) {
+          x.v.push_back(f.v[k]);
+          on.push_back(0);
+        }
+        on.back() |= on_corner(k, n);
+      }
+      while (x.v.size() > 1 && x.v.front().xy() == x.v.back().xy()) {
+        x.v.pop_back();
+        on.front() |= on.back();
+        on.pop_back();
+      }
+      std::vector<int> own(n);
+      for (std::size_t k = 0; k < n; ++k) own[k] = static_cast<int>(k);
+      x.edge = part_edges(on, own);
+      if (f.facing == Facing::Back) {   // counter-clockwise
+        std::reverse(x.v.begin(), x.v.end());
+        x.edge = reversed_edges(x.edge);
+      }
       x.cut_on.assign(x.v.size(), -1);
       insert(add(std::move(x)));
     }

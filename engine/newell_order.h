@@ -4,6 +4,7 @@
 #pragma once
 #include <vector>
 
+#include "engine/part_edges.h"
 #include "engine/screen_scene.h"
 
 namespace vismap::engine {
@@ -15,6 +16,8 @@ struct Fragment {
   int face = -1;                 // input face index
   std::vector<P3> v;
   std::vector<int> cut_on;       // per vertex: the facet on whose plane it was cut, or -1
+  std::vector<int> edge;         // per edge v[k] -> v[k+1]: the edge j of its facet (Facet::v[j] ->
+                                 // v[j+1]) whose line holds it, or -1 (a cut, or not known)
   CGAL::Bbox_2 box;              // contains the exact projection
 };
 

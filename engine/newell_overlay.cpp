@@ -189,13 +189,19 @@ struct Cutter {
 // ---- painting ------------------------------------------------------------------------
 
 // The curve being painted: its ends, and which fragment sides lie on its line
-// (decided once per side, on exact leaves, and only for sides the intervals
-// cannot tell from the midpoint: those are nearly always its own facets' edges
-// and the split lines along an intersection line).
+// (asked only for sides the intervals cannot tell from the midpoint: those are
+// nearly always its own facets' edges, and the split lines along an
+// intersection line). A side on the facet edge that holds the curve (the
+// fragment's Fragment::edge, the curve's sharer_edge) is told by index; any
+// other once per side, on exact leaves.
 struct CurveLine {
+  const Curve& cv;
   const P3 &s, &t;
   std::unordered_map<std::uint64_t, bool> on_line;
-  bool side_on_line(int frag, std::size_t k, const P3& p, const P3& q) {
+  bool side_on_line(const Fragment& X, int frag, std::size_t k, const P3& p, const P3& q) {
+    if (X.edge[k] >= 0)
+      for (std::size_t i = 0; i < cv.sharers.size(); ++i)
+        if (cv.sharers[i] == X.facet && cv.sharer_edge[i] == X.edge[k]) return true;
     auto [it, fresh] = on_line.try_emplace((static_cast<std::uint64_t>(frag) << 24) | k, false);
     if (fresh) it->second = orient(p, q, s) == CGAL::ZERO && orient(p, q, t) == CGAL::ZERO;
     return it->second;
@@ -222,7 +228,7 @@ bool covers(const Fragment& X, int frag, const P2& m, CurveLine& line, bool& lef
       if (v.inf() > 0) { o = CGAL::POSITIVE; known = true; }
       else if (v.sup() < 0) { o = CGAL::NEGATIVE; known = true; }
     }
-    if (!known && !line.side_on_line(frag, k, p, q)) o = CGAL::orientation(p.xy(), q.xy(), m);
+    if (!known && !line.side_on_line(X, frag, k, p, q)) o = CGAL::orientation(p.xy(), q.xy(), m);
     if (o == CGAL::POSITIVE) continue;
     if (o == CGAL::NEGATIVE) return left = right = false;
     // m on this side's line. Its inward normal is (q - p) turned left: against n
@@ -419,7 +425,7 @@ std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Frag
   for (int ci = 0; ci < static_cast<int>(ss.curves.size()); ++ci) {
     const Curve& cv = ss.curves[ci];
     const P2 s = cv.s->xy(), t = cv.t->xy();
-    CurveLine line{*cv.s, *cv.t, {}};
+    CurveLine line{cv, *cv.s, *cv.t, {}};
     // Sort the cuts along the curve (by its dominant coordinate); a point cut
     // twice is one cut.
     std::vector<P2>& pts = cuts[ci];
