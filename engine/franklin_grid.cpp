@@ -1093,6 +1093,8 @@ struct CrossingOf {
   }
 };
 
+}  // namespace
+
 P2 crossing_point(const P2& a, const P2& b, const P2& c, const P2& d) {
 #ifdef VISMAP_FLOAT_KERNEL
   return CrossingOf<K>()(a, b, c, d);
@@ -1100,6 +1102,8 @@ P2 crossing_point(const P2& a, const P2& b, const P2& c, const P2& d) {
   return CGAL::Lazy_construction<K, CrossingOf<K::Approximate_kernel>, CrossingOf<K::Exact_kernel>>()(a, b, c, d);
 #endif
 }
+
+namespace {
 
 // What cutting one row of cells finds, in the order the cells and pairs were
 // looked at: the rows are cut in parallel and joined in row order.

@@ -72,6 +72,11 @@ bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3
 // first would change which later predicates the filter settles, and the counts
 // in the JSON must not depend on the thread count.)
 Curve crossing_curve(const Facet& A, const Facet& B, int fa, int fb, const P2& p, const P2& q, std::deque<P3>& ends);
+// Where segments a-b and c-d cross (they do, properly): one lazy node, whose
+// interval is the common part of both segments' (a crossing on an axis-parallel
+// segment gets that segment's exact coordinate) and whose exact value is made
+// on integers, without a gcd at every step.
+P2 crossing_point(const P2& a, const P2& b, const P2& c, const P2& d);
 // Facets with an edge in common (by identity): they never pierce each other.
 bool share_an_edge(const Facet& A, const Facet& B);
 // sign(depth of C - depth of D) at point p of the common screen line of curves C

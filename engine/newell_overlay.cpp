@@ -149,10 +149,8 @@ struct Cutter {
     const auto o3 = CGAL::orientation(d0, d1, c0), o4 = CGAL::orientation(d0, d1, c1);
     if (o3 == o4 && o3 != CGAL::COLLINEAR) return;
     if (o1 != CGAL::COLLINEAR && o2 != CGAL::COLLINEAR && o3 != CGAL::COLLINEAR && o4 != CGAL::COLLINEAR) {
-      // A proper crossing.
-      const V2 u = c1 - c0, v = d1 - d0, w = d0 - c0;
-      const FT lambda = (w.x() * v.y() - w.y() * v.x()) / (u.x() * v.y() - u.y() * v.x());
-      const P2 x = c0 + lambda * u;
+      // A proper crossing (made as Franklin's engine makes one: franklin_grid.h).
+      const P2 x = crossing_point(c0, c1, d0, d1);
       cut(ci, x);
       cut(di, x);
       ++crossings;
