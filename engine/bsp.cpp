@@ -127,7 +127,7 @@ void screen_polygon(const BspTree::Fragment& x, const Facet& F, Images& images, 
   std::vector<P3>& v = out.v;
   std::vector<std::uint64_t> on;   // which of x's edges each corner lies on
   auto add = [&](const P3& q, std::uint64_t edges) {
-    if (v.empty() || !(v.back().xy() == q.xy())) {
+    if (v.empty() || !equal_points(v.back().xy(), q.xy())) {
       v.push_back(q);
       on.push_back(0);
     }
@@ -140,7 +140,7 @@ void screen_polygon(const BspTree::Fragment& x, const Facet& F, Images& images, 
     if (fa) add(images.of(a, F), on_corner(k, n));
     if (fa != fb) add(fa ? images.near_cut(a, b) : images.near_cut(b, a), on_edge(k));
   }
-  while (v.size() > 1 && v.front().xy() == v.back().xy()) {
+  while (v.size() > 1 && equal_points(v.front().xy(), v.back().xy())) {
     v.pop_back();
     on.front() |= on.back();
     on.pop_back();

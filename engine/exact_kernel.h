@@ -77,6 +77,18 @@ inline bool same_rep(const P2& a, const P2& b) { return &a == &b; }
 inline bool same_rep(const P2& a, const P2& b) { return a.identical(b); }
 #endif
 
+// Whether two points are equal: by representation, then by their coordinates'
+// intervals (apart in x or in y: different), and only then by CGAL's equality.
+// (That compares x first and throws where x alone is uncertain: every two
+// points of a vertical screen line, which views with the up axis vertical are
+// full of, went to exact numbers though their y told them apart.)
+inline bool equal_points(const P2& a, const P2& b) {
+  if (same_rep(a, b)) return true;
+  auto apart = [](const Interval& p, const Interval& q) { return p.sup() < q.inf() || q.sup() < p.inf(); };
+  if (apart(approx_x(a), approx_x(b)) || apart(approx_y(a), approx_y(b))) return false;
+  return a == b;
+}
+
 // The sign of an expression: on the intervals of its operands if they decide it,
 // else exactly in GMP rationals; counted like CGAL's own filters. For the hot
 // predicates whose lazy form would build a tree of numbers at every call.

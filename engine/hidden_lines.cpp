@@ -331,7 +331,7 @@ class Visibility {
         for (std::size_t j = 0, m = g.v.size(); j < m; ++j) {
           const std::size_t j1 = (j + 1) % m;
           auto same = [&](std::size_t fk, std::size_t gj) {
-            return f.id[fk] >= 0 ? f.id[fk] == g.id[gj] : g.id[gj] < 0 && f.v[fk].xy() == g.v[gj].xy();
+            return f.id[fk] >= 0 ? f.id[fk] == g.id[gj] : g.id[gj] < 0 && equal_points(f.v[fk].xy(), g.v[gj].xy());
           };
           if (!((same(k, j) && same(k1, j1)) || (same(k, j1) && same(k1, j)))) continue;
           if (CGAL::orientation(u, v, g.v[(j + 2) % m].xy()) == -mine) return true;

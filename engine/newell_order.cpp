@@ -106,13 +106,13 @@ class DepthSort {
       const std::size_t n = f.v.size();
       std::vector<std::uint64_t> on;   // which of f's edges each corner lies on
       for (std::size_t k = 0; k < n; ++k) {
-        if (x.v.empty() || !(x.v.back().xy() == f.v[k].xy())) {
+        if (x.v.empty() || !equal_points(x.v.back().xy(), f.v[k].xy())) {
           x.v.push_back(f.v[k]);
           on.push_back(0);
         }
         on.back() |= on_corner(k, n);
       }
-      while (x.v.size() > 1 && x.v.front().xy() == x.v.back().xy()) {
+      while (x.v.size() > 1 && equal_points(x.v.front().xy(), x.v.back().xy())) {
         x.v.pop_back();
         on.front() |= on.back();
         on.pop_back();

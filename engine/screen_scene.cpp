@@ -424,7 +424,7 @@ bool CurveMaker::make(const std::vector<Facet>& facets, const WorldPiece& wp, Cu
   c.t = fb ? &image(b) : &ends.emplace_back(clip_point(a, b));
   c.vs = fa ? static_cast<VertexId>(a) : -1;
   c.vt = fb ? static_cast<VertexId>(b) : -1;
-  if (c.s->xy() == c.t->xy()) { ++dropped_point; return false; }   // seen end-on
+  if (equal_points(c.s->xy(), c.t->xy())) { ++dropped_point; return false; }   // seen end-on
   c.box = box_of(*c.s) + box_of(*c.t);
   return true;
 }
@@ -720,7 +720,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   std::deque<P3>& cut_ends = ss.ends.emplace_back();
   for (std::size_t fi = 0; fi < clip_edges.size(); ++fi) {
     const auto& ce = clip_edges[fi];
-    if (ce.size() != 2 || !ss.facets[fi].occluder || ce[0].xy() == ce[1].xy()) continue;
+    if (ce.size() != 2 || !ss.facets[fi].occluder || equal_points(ce[0].xy(), ce[1].xy())) continue;
     Curve c;
     c.s = &cut_ends.emplace_back(ce[0]);
     c.t = &cut_ends.emplace_back(ce[1]);
