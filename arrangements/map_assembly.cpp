@@ -63,13 +63,31 @@ std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph
       ends[2 * i + 1] = End{approx_point(pieces[i].b).x(), 2 * i + 1};
     }
   });
+  // Pieces whose line is upright on the screen (its two points' x exactly
+  // equal): every point of it has that x. Two ends on one such line are then
+  // ordered by y alone, most often by y's intervals, with no exact value made:
+  // the points of a vertical edge in a view with the up axis vertical, or of a
+  // terrain's grid column seen along a rational direction.
+  std::vector<char> upright(pieces.size(), 0);
+  engine::parallel_chunks(npieces, 16384, threads, [&](int, engine::Chunk r) {
+    for (int i = r.begin; i < r.end; ++i) {
+      const MapPiece& m = pieces[i];
+      if (m.line < 0 || !m.s || !m.t) continue;
+      const Interval sx = m.s->x.approx(), tx = m.t->x.approx();
+      upright[i] = !(sx.sup() < tx.inf() || tx.sup() < sx.inf()) && CGAL::compare(m.s->x, m.t->x) == CGAL::EQUAL;
+    }
+  });
+  auto on_one_upright_line = [&](const End& a, const End& b) {
+    const int i = a.at / 2, j = b.at / 2;
+    return upright[i] && pieces[i].line == pieces[j].line;
+  };
   auto compare = [&](const End& a, const End& b) {
     if (a.x.sup() < b.x.inf()) return CGAL::SMALLER;
     if (b.x.sup() < a.x.inf()) return CGAL::LARGER;
     const P2 &pa = point(a), &pb = point(b);
     if (exact::same_rep(pa, pb)) return CGAL::EQUAL;
     const Interval &ay = approx_point(pa).y(), &by = approx_point(pb).y();
-    if (a.x.is_point() && b.x.is_point()) {   // x equal (its doubles are exact): y's intervals may tell
+    if ((a.x.is_point() && b.x.is_point()) || on_one_upright_line(a, b)) {   // x equal: y's intervals may tell
       if (ay.sup() < by.inf()) return CGAL::SMALLER;
       if (by.sup() < ay.inf()) return CGAL::LARGER;
     }
