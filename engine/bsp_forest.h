@@ -27,12 +27,9 @@ namespace vismap::engine {
 struct Separation {
   int axis = -1;                          // 0, 1, 2; -1: the plane through ids
   double c = 0;
-  std::array<std::uint32_t, 4> ids{};     // p, q, r, s
+  std::array<std::uint32_t, 4> ids{};     // p, q, r, s: x's side is the sign of det(q - p, s - r, x - p)
   int first_side = 0;                     // the side (+1 or -1) the lower-numbered group lies on
 };
-
-// The side of the plane (axis -1) point x lies on: sign of det(q - p, s - r, x - p).
-int plane_side(const Scene& scene, const Separation& s, const Vec3& x);
 
 struct BspForest {
   std::shared_ptr<const WorldFacets> facets;
