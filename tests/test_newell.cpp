@@ -18,6 +18,7 @@
 #include "arrangements/json_writer.h"
 #include "bench/scene_gen.h"
 #include "engine/bsp_forest.h"
+#include "engine/part_edges.h"
 #include "engine/visibility.h"
 #include "tests/test_support.h"
 
@@ -514,3 +515,23 @@ TEST(Painter, BackToFrontShowsTheMap) {
 }
 
 }  // namespace
+
+// A fragment's edges keep the facet edge each lies on through a cut and a
+// reversal (engine/part_edges.h): the overlay then tells a curve on its own
+// facet's edge by index.
+TEST(PartEdges, CutAndReversedQuadKeepsItsEdgesLabels) {
+  using namespace vismap::engine;
+  // Quad c0 c1 c2 c3, its edges labelled 10..13, cut by a line through edges 1 and 3:
+  // the part c0, c1, x1 (on edge 1), x3 (on edge 3).
+  const std::vector<int> labels{10, 11, 12, 13};
+  const std::vector<std::uint64_t> part{on_corner(0, 4), on_corner(1, 4), on_edge(1), on_edge(3)};
+  const std::vector<int> edges = part_edges(part, labels);
+  EXPECT_EQ(edges, (std::vector<int>{10, 11, -1, 13}));   // c0-c1 on 0, c1-x1 on 1, x1-x3 the cut, x3-c0 on 3
+  // Reversed: x3, x1, c1, c0.
+  EXPECT_EQ(reversed_edges(edges), (std::vector<int>{-1, 11, 10, 13}));
+  // A corner kept for two equal on the screen (corners 1 and 2 of the quad) lies on edges 0, 1 and 2.
+  const std::vector<std::uint64_t> merged{on_corner(0, 4), on_corner(1, 4) | on_corner(2, 4), on_corner(3, 4)};
+  EXPECT_EQ(part_edges(merged, labels), (std::vector<int>{10, 12, 13}));
+  // Edges from the 64th on have no bit: not known.
+  EXPECT_EQ(part_edges({on_corner(64, 70), on_corner(65, 70)}, std::vector<int>(70, 7)), (std::vector<int>{-1, -1}));
+}
