@@ -119,40 +119,20 @@ class Images {
 };
 
 // Fragment x of facet F on the screen, as `out`'s corners: those in front of the
-// near plane and where its edges cross it, counter-clockwise; no two equal
-// consecutive points. Empty where nothing of it is left. Each edge keeps the
-// facet edge it lies on (a corner left out as equal to the one before it: the
-// corner kept lies on the edges of both).
+// near plane and where its edges cross it, counter-clockwise, each edge with the
+// facet edge it lies on (FragmentCorners). Empty where nothing of it is left.
 void screen_polygon(const BspTree::Fragment& x, const Facet& F, Images& images, Fragment& out) {
-  std::vector<P3>& v = out.v;
-  std::vector<std::uint64_t> on;   // which of x's edges each corner lies on
-  auto add = [&](const P3& q, std::uint64_t edges) {
-    if (v.empty() || !equal_points(v.back().xy(), q.xy())) {
-      v.push_back(q);
-      on.push_back(0);
-    }
-    on.back() |= edges;
-  };
+  FragmentCorners corners(out);
   const std::size_t n = x.corners.size();
   for (std::size_t k = 0; k < n; ++k) {
     const std::uint32_t a = x.corners[k], b = x.corners[(k + 1) % n];
     const bool fa = images.in_front(a, F), fb = images.in_front(b, F);
-    if (fa) add(images.of(a, F), on_corner(k, n));
-    if (fa != fb) add(fa ? images.near_cut(a, b) : images.near_cut(b, a), on_edge(k));
+    if (fa) corners.add(images.of(a, F), on_corner(k, n));
+    if (fa != fb) corners.add(fa ? images.near_cut(a, b) : images.near_cut(b, a), on_edge(k));
   }
-  while (v.size() > 1 && equal_points(v.front().xy(), v.back().xy())) {
-    v.pop_back();
-    on.front() |= on.back();
-    on.pop_back();
-  }
-  if (v.size() < 3) {
-    v.clear();
-    return;
-  }
-  out.edge = part_edges(on, x.edge);
-  if (F.facing == Facing::Back) {   // counter-clockwise
-    std::reverse(v.begin(), v.end());
-    out.edge = reversed_edges(out.edge);
+  if (!corners.close(x.edge, F.facing == Facing::Back)) {
+    out.v.clear();
+    out.edge.clear();
   }
 }
 

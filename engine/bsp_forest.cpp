@@ -171,16 +171,17 @@ class ForestBuilder {
     // faces: 430 s). Left unseparated, the two share one tree: always right.
     constexpr std::size_t kAllPlanesUpTo = 256;
     const std::size_t ng = f_.groups[static_cast<std::size_t>(g)].size(), nh = f_.groups[static_cast<std::size_t>(h)].size();
-    const int small = ng <= nh ? g : h, large = ng <= nh ? h : g;
-    for (int owner : {small, large}) {
-      if (owner == large && std::max(ng, nh) > kAllPlanesUpTo) break;
+    auto facet_plane_splits = [&](int owner) {
       for (auto fi : f_.groups[static_cast<std::size_t>(owner)]) {
         const std::array<std::uint32_t, 3> span = spanning_ids(scene_, f_.facets->facets[fi]);
         s.ids = {span[0], span[1], span[0], span[2]};
         if (splits(g, h, s)) return true;
       }
-    }
+      return false;
+    };
+    if (facet_plane_splits(ng <= nh ? g : h)) return true;
     if (std::max(ng, nh) > kAllPlanesUpTo) return false;   // (nor edge planes: edges() sorts a group's edges)
+    if (facet_plane_splits(ng <= nh ? h : g)) return true;
     const auto eg = edges(g), eh = edges(h);
     if (eg.size() * eh.size() > 4096) return false;   // (left to one group's tree)
     for (const auto& a : eg)

@@ -79,6 +79,11 @@ Curve crossing_curve(const Facet& A, const Facet& B, int fa, int fb, const P2& p
 P2 crossing_point(const P2& a, const P2& b, const P2& c, const P2& d);
 // Facets with an edge in common (by identity): they never pierce each other.
 bool share_an_edge(const Facet& A, const Facet& B);
+// Facets that cannot pierce each other, told without arithmetic: their depth
+// ranges apart, or an edge in common. (The pair searches' first test.)
+inline bool cannot_pierce(const Facet& A, const Facet& B) {
+  return A.zhi < B.zlo || B.zhi < A.zlo || share_an_edge(A, B);
+}
 // sign(depth of C - depth of D) at point p of the common screen line of curves C
 // and D, parametrised along x (along y if the line is vertical).
 CGAL::Sign depth_gap(const Curve& C, const Curve& D, const P2& p, bool along_x);

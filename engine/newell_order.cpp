@@ -101,29 +101,12 @@ class DepthSort {
       const Facet& f = ss_.facets[fi];
       if (!f.occluder) continue;
       Fragment x{fi, f.face, {}, {}, {}, f.box};
-      // (A corner equal on the screen to the one before it is left out: the
-      // corner kept lies on the edges of both.)
       const std::size_t n = f.v.size();
-      std::vector<std::uint64_t> on;   // which of f's edges each corner lies on
-      for (std::size_t k = 0; k < n; ++k) {
-        if (x.v.empty() || !equal_points(x.v.back().xy(), f.v[k].xy())) {
-          x.v.push_back(f.v[k]);
-          on.push_back(0);
-        }
-        on.back() |= on_corner(k, n);
-      }
-      while (x.v.size() > 1 && equal_points(x.v.front().xy(), x.v.back().xy())) {
-        x.v.pop_back();
-        on.front() |= on.back();
-        on.pop_back();
-      }
-      std::vector<int> own(n);
+      FragmentCorners corners(x);
+      for (std::size_t k = 0; k < n; ++k) corners.add(f.v[k], on_corner(k, n));
+      std::vector<int> own(n);   // (its edges are the facet's own)
       for (std::size_t k = 0; k < n; ++k) own[k] = static_cast<int>(k);
-      x.edge = part_edges(on, own);
-      if (f.facing == Facing::Back) {   // counter-clockwise
-        std::reverse(x.v.begin(), x.v.end());
-        x.edge = reversed_edges(x.edge);
-      }
+      corners.close(own, f.facing == Facing::Back);
       x.cut_on.assign(x.v.size(), -1);
       insert(add(std::move(x)));
     }
@@ -299,6 +282,29 @@ class DepthSort {
 };
 
 }  // namespace
+
+void FragmentCorners::add(const P3& p, std::uint64_t edges) {
+  if (f_.v.empty() || !equal_points(f_.v.back().xy(), p.xy())) {
+    f_.v.push_back(p);
+    on_.push_back(0);
+  }
+  on_.back() |= edges;
+}
+
+bool FragmentCorners::close(const std::vector<int>& labels, bool reverse) {
+  std::vector<P3>& v = f_.v;
+  while (v.size() > 1 && equal_points(v.front().xy(), v.back().xy())) {
+    v.pop_back();
+    on_.front() |= on_.back();
+    on_.pop_back();
+  }
+  f_.edge = part_edges(on_, labels);
+  if (reverse) {
+    std::reverse(v.begin(), v.end());
+    f_.edge = reversed_edges(f_.edge);
+  }
+  return v.size() >= 3;
+}
 
 std::vector<Fragment> depth_sort(const ScreenScene& ss, Stats& stats) { return DepthSort(ss, stats).run(); }
 

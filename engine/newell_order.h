@@ -21,6 +21,23 @@ struct Fragment {
   CGAL::Bbox_2 box;              // contains the exact projection
 };
 
+// A fragment's screen polygon made corner by corner, each corner with the edges of
+// its source polygon it lies on (part_edges.h bits). A corner equal on the screen
+// to the one before it is left out: the corner kept lies on the edges of both.
+class FragmentCorners {
+ public:
+  explicit FragmentCorners(Fragment& f) : f_(f) {}
+  void add(const P3& p, std::uint64_t edges);
+  // Closes the polygon (its last corner equal to its first is left out too) and
+  // labels its edges from the source polygon's `labels`, reversed to run
+  // counter-clockwise where `reverse`. False where fewer than three corners are left.
+  bool close(const std::vector<int>& labels, bool reverse);
+
+ private:
+  Fragment& f_;
+  std::vector<std::uint64_t> on_;
+};
+
 // The ordered list, first drawn first. For any two fragments whose projections
 // overlap in an open set, the later one comes first in the order (depth, face
 // index) wherever they overlap: nearer, or at equal depth of a lower face index.

@@ -194,14 +194,13 @@ struct Cutter {
 // other once per side, on exact leaves.
 struct CurveLine {
   const Curve& cv;
-  const P3 &s, &t;
   std::unordered_map<std::uint64_t, bool> on_line;
   bool side_on_line(const Fragment& X, int frag, std::size_t k, const P3& p, const P3& q) {
     if (X.edge[k] >= 0)
       for (std::size_t i = 0; i < cv.sharers.size(); ++i)
         if (cv.sharers[i] == X.facet && cv.sharer_edge[i] == X.edge[k]) return true;
     auto [it, fresh] = on_line.try_emplace((static_cast<std::uint64_t>(frag) << 24) | k, false);
-    if (fresh) it->second = orient(p, q, s) == CGAL::ZERO && orient(p, q, t) == CGAL::ZERO;
+    if (fresh) it->second = orient(p, q, *cv.s) == CGAL::ZERO && orient(p, q, *cv.t) == CGAL::ZERO;
     return it->second;
   }
 };
@@ -231,10 +230,10 @@ bool covers(const Fragment& X, int frag, const P2& m, CurveLine& line, bool& lef
     if (o == CGAL::NEGATIVE) return left = right = false;
     // m on this side's line. Its inward normal is (q - p) turned left: against n
     // it gives (q - p).d, against d the cross product (q - p) x d.
-    const auto across = dot_sign(p, q, line.s, line.t);
+    const auto across = dot_sign(p, q, *line.cv.s, *line.cv.t);
     if (across > 0) right = false;
     else if (across < 0) left = false;
-    else if (cross_sign(p, q, line.s, line.t) <= 0) return left = right = false;
+    else if (cross_sign(p, q, *line.cv.s, *line.cv.t) <= 0) return left = right = false;
     if (!left && !right) return false;
   }
   return true;
@@ -319,7 +318,7 @@ void add_piercing_lines(ScreenScene& ss, Stats& stats) {
     const Facet &A = ss.facets[fa], &B = ss.facets[fb];
     // (Franklin's test of a pair, franklin_grid.h: neighbours on a mesh are told
     // by their shared edge or corner, or on doubles in the world.)
-    if (A.face == B.face || A.zhi < B.zlo || B.zhi < A.zlo || share_an_edge(A, B)) return;
+    if (A.face == B.face || cannot_pierce(A, B)) return;
     ++tested;
     P2 p, q;
     if (!intersection_segment(A, B, ss.world, p, q)) return;
@@ -423,7 +422,7 @@ std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Frag
   for (int ci = 0; ci < static_cast<int>(ss.curves.size()); ++ci) {
     const Curve& cv = ss.curves[ci];
     const P2 s = cv.s->xy(), t = cv.t->xy();
-    CurveLine line{cv, *cv.s, *cv.t, {}};
+    CurveLine line{cv, {}};
     // Sort the cuts along the curve (by its dominant coordinate); a point cut
     // twice is one cut.
     std::vector<P2>& pts = cuts[ci];
