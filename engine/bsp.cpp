@@ -215,6 +215,10 @@ VisibilityMap visibility_bsp(const Scene& scene, const View& view, const Options
   BspForest own;
   if (!shared) own = build_bsp_forest(scene, opt.threads);
   BspForest& forest = shared ? *shared : own;
+  if (shared) {   // (made once for several views: counted as if made for this one)
+    exact::filter_counts.calls += forest.counted.calls;
+    exact::filter_counts.exact += forest.counted.exact;
+  }
   count_forest(forest, st);
   if (!shared) st.time("bsp_tree", clock.lap());   // (a shared forest's making is its maker's to count)
   else clock.lap();

@@ -340,11 +340,13 @@ int components(const std::vector<std::vector<int>>& next, std::vector<int>& comp
 }  // namespace
 
 BspForest build_bsp_forest(const Scene& scene, int threads) {
+  const exact::FilterCounts before = exact::filter_counts;
   BspForest forest;
   forest.facets = std::make_shared<const WorldFacets>(make_world_facets(scene, threads));
   ForestBuilder b(scene, forest);
   b.group();
   b.plant();
+  forest.counted = {exact::filter_counts.calls - before.calls, exact::filter_counts.exact - before.exact};
   return forest;
 }
 
@@ -407,6 +409,9 @@ std::vector<const BspTree*> trees_back_to_front(BspForest& forest, const Scene& 
                                       forest.groups[static_cast<std::size_t>(g)].end());
         std::sort(facets.begin(), facets.end());
         it = forest.circuits.emplace(m, build_bsp_tree(scene, forest.facets, facets)).first;
+      } else {   // (made for an earlier view: counted as if made for this one)
+        exact::filter_counts.calls += it->second.counted.calls;
+        exact::filter_counts.exact += it->second.counted.exact;
       }
       out.push_back(&it->second);
     }

@@ -40,6 +40,8 @@ struct BspForest {
   std::map<std::pair<int, int>, Separation> meeting;   // groups whose boxes meet: their plane
   std::map<std::vector<int>, BspTree> circuits;     // trees of groups drawn together (a cycle)
   std::int64_t objects = 0;                         // connected components (facets sharing vertices)
+  exact::FilterCounts counted;                      // the filtered predicates making it ran (circuits' trees
+                                                    // aside: each counts its own)
 };
 
 // The forest of the scene's facets. Throws InputError as make_world_facets does.

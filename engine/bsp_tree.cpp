@@ -262,9 +262,11 @@ class Builder {
 
 BspTree build_bsp_tree(const Scene& scene, std::shared_ptr<const WorldFacets> wf,
                        const std::vector<std::uint32_t>& facets) {
+  const exact::FilterCounts before = exact::filter_counts;
   BspTree t;
   t.facets = std::move(wf);
   Builder(scene, t).run(facets);
+  t.counted = {exact::filter_counts.calls - before.calls, exact::filter_counts.exact - before.exact};
   return t;
 }
 

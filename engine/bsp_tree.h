@@ -47,6 +47,8 @@ struct BspTree {
   std::vector<Fragment> fragments;
   std::vector<Node> nodes;
   int root = -1;
+  exact::FilterCounts counted;   // the filtered predicates its making ran (a view that finds it
+                                 // made counts them, as a view that makes it does)
   std::int64_t splits = 0;   // fragments cut in two
   int depth = 0;             // the longest path from the root, in nodes
 };
