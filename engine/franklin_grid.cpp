@@ -322,7 +322,12 @@ Grid make_grid(const ScreenScene& ss, double c, int threads, Stats& stats) {
     }
   if (!any) box = CGAL::Bbox_2(0, 0, 1, 1);
   Grid g;
-  const double n = static_cast<double>(curve_count(ss));
+  // The curves the cells are sized for. A lines-only drawing's latent curves (not
+  // drawn) are mostly never listed: they count for 1/64 each, so that the grid
+  // stays coarse where only the facets fill it (their pair search and hiding
+  // tests want a few dozen per cell; measured: the 10^6-triangle terrain at
+  // crease 30, lines only, 12 % less time; B 1044 -> 267).
+  const double n = static_cast<double>(ss.curves.size()) + static_cast<double>(ss.latent_box.size()) / 64;
   const bool sized = any && std::max(box.xmax() - box.xmin(), box.ymax() - box.ymin()) > 0 && n > 0;
   std::vector<double> xs, ys;
   if (sized) {
