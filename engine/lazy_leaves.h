@@ -29,6 +29,44 @@ inline CGAL::Mpzf projected_mpzf(const std::array<double, 4>& row, const Vec3& p
   return s;
 }
 
+// An interval around (row . (p, 1)) * 2^k from doubles alone: each product
+// split exactly in two (fma), the seven parts summed as in twice the precision
+// (Ogita, Rump and Oishi's Sum2: two-sum errors gathered), then widened by that
+// sum's error bound and an ulp either side. Three or four ulps wide (against
+// projected_mpzf's one): no GMP number is made for a filter's interval. False
+// where a product or the scale could leave the range in which that holds (the
+// caller then takes projected_mpzf's).
+inline bool projected_bounds(const std::array<double, 4>& row, const Vec3& p, int k, double& lo, double& hi) {
+  const double v[3] = {p.x, p.y, p.z};
+  if (!(std::abs(row[3]) < 0x1p900)) return false;
+  double sum = row[3], err = 0, size = std::abs(row[3]);
+  auto add = [&](double t) {   // (two-sum: sum + t = new sum + q exactly)
+    const double s = sum + t, b = s - sum, q = (sum - (s - b)) + (t - b);
+    sum = s;
+    err += q;
+    size += std::abs(t);
+  };
+  for (int c = 0; c < 3; ++c) {
+    const double m = row[static_cast<std::size_t>(c)], prod = m * v[c];
+    if (prod != 0 && !(std::abs(prod) > 0x1p-900 && std::abs(prod) < 0x1p900)) return false;
+    add(prod);
+    add(std::fma(m, v[c], -prod));   // (exact: prod is far from underflow)
+  }
+  // |result - exact| <= u |exact| + gamma_6^2 size (u = 2^-53): taken as
+  // 2^-52 |result| + 2^-100 size, to cover the bound's own rounding.
+  const double result = sum + err, bound = std::abs(result) * 0x1p-52 + size * 0x1p-100;
+  lo = std::nextafter(result - bound, -HUGE_VAL);
+  hi = std::nextafter(result + bound, HUGE_VAL);
+  if (k != 0) {
+    lo = std::ldexp(lo, k);
+    hi = std::ldexp(hi, k);
+    // (Exact unless it leaves the normal range.)
+    for (double x : {lo, hi})
+      if (x != 0 && !(std::abs(x) >= 0x1p-1000 && std::abs(x) < 0x1p1000)) return false;
+  }
+  return true;
+}
+
 // What the lazy leaves' exact values are computed from, on demand: the input's
 // vertices, the view, the screen scale, and per facet three input vertices that
 // span its plane in the world. (The screen scene owns it: it outlives every
@@ -140,8 +178,12 @@ inline FT projected_number(const ExactSource& source, std::uint32_t v, int r, bo
   const Vec3& p = (*source.vertices)[v];
   return std::ldexp(row[0] * p.x + row[1] * p.y + row[2] * p.z + row[3], scaled ? source.k : 0);
 #else
-  const std::pair<double, double> i = source.row_at(r, v, scaled).to_interval();
-  if (i.first == i.second) return FT(i.first);
+  std::pair<double, double> i;
+  if (!projected_bounds(source.m[static_cast<std::size_t>(r)], (*source.vertices)[v], scaled ? source.k : 0, i.first,
+                        i.second)) {
+    i = source.row_at(r, v, scaled).to_interval();
+    if (i.first == i.second) return FT(i.first);
+  }
   return FT(new ProjectedRep(Interval(i.first, i.second), source, v, r, scaled));
 #endif
 }
@@ -155,7 +197,13 @@ inline FT perspective_number(const ExactSource& source, std::uint32_t v, int r) 
   return std::ldexp((n[0] * p.x + n[1] * p.y + n[2] * p.z + n[3]) / (w[0] * p.x + w[1] * p.y + w[2] * p.z + w[3]),
                     source.k);
 #else
-  const std::pair<double, double> in = source.row_at(r, v, true).to_interval(), iw = source.row_at(3, v, false).to_interval();
+  std::pair<double, double> in, iw;
+  const Vec3& p = (*source.vertices)[v];
+  if (!projected_bounds(source.m[static_cast<std::size_t>(r)], p, source.k, in.first, in.second))
+    in = source.row_at(r, v, true).to_interval();
+  // (W > 0: an interval reaching 0 would make the quotient's unbounded.)
+  if (!projected_bounds(source.m[3], p, 0, iw.first, iw.second) || !(iw.first > 0))
+    iw = source.row_at(3, v, false).to_interval();
   Interval q;
   {
     CGAL::Protect_FPU_rounding<true> upward;
