@@ -307,11 +307,27 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
     std::uint64_t hash;
     std::uint32_t group;   // (groups are numbered in vertex-pair order)
   };
+  // (The hashes are mixed, so their top bits spread them evenly: a counting
+  // sort by the top 16 bits, in group order, leaves buckets of a few dozen to
+  // sort, in parallel; the same order as one comparison sort, at a third of its cost.)
   std::vector<Slot> slots(ngroups);
-  for (std::size_t g = 0; g < ngroups; ++g) slots[g] = Slot{cells_at[g], static_cast<std::uint32_t>(g)};
-  engine::parallel_sort(slots.begin(), slots.end(), [](const Slot& x, const Slot& y) {
-    return x.hash != y.hash ? x.hash < y.hash : x.group < y.group;   // (a total order)
-  }, threads);
+  {
+    constexpr int shift = 48;
+    std::vector<std::uint32_t> bucket_start((std::size_t(1) << (64 - shift)) + 1, 0);
+    for (std::size_t g = 0; g < ngroups; ++g) ++bucket_start[(cells_at[g] >> shift) + 1];
+    for (std::size_t b = 1; b < bucket_start.size(); ++b) bucket_start[b] += bucket_start[b - 1];
+    std::vector<std::uint32_t> next(bucket_start.begin(), bucket_start.end() - 1);
+    for (std::size_t g = 0; g < ngroups; ++g)
+      slots[next[cells_at[g] >> shift]++] = Slot{cells_at[g], static_cast<std::uint32_t>(g)};
+    const int nbuckets = static_cast<int>(bucket_start.size() - 1);
+    parallel_chunks(nbuckets, 1024, threads, [&](int, Chunk r) {
+      for (int b = r.begin; b < r.end; ++b)
+        std::sort(slots.begin() + bucket_start[static_cast<std::size_t>(b)],
+                  slots.begin() + bucket_start[static_cast<std::size_t>(b) + 1], [](const Slot& x, const Slot& y) {
+                    return x.hash != y.hash ? x.hash < y.hash : x.group < y.group;   // (a total order)
+                  });
+    });
+  }
   constexpr std::uint32_t alone = UINT32_MAX, in_run = UINT32_MAX - 1;
   std::vector<std::uint32_t> run_at(ngroups, alone);   // a run's first group: where its slots start
   for (std::size_t lo = 0; lo < ngroups;) {
