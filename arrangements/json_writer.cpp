@@ -1,5 +1,6 @@
 #include "arrangements/json_writer.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "arrangements/rational.h"
@@ -49,22 +50,50 @@ void faces(std::string& out, const std::vector<int>& f) {
   out += ']';
 }
 
-// "hidden" (only when asked for): segments with their own end points.
-void hidden(std::string& out, const std::vector<HiddenSegment>& list) {
-  out += ",\n\"hidden\":[";
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const HiddenSegment& h = list[i];
-    out += i ? ",\n" : "\n";
-    out += "{\"from\":";
-    point(out, h.from);
-    out += ",\"to\":";
-    point(out, h.to);
-    out += ",\"kind\":\"";
-    out += to_string(h.kind);
-    out += "\",\"faces\":";
-    faces(out, h.faces);
-    out += '}';
+// Items [0, n), item(i, text) appending item i's text, handed to `sink` in
+// order: after what `out` holds, in blocks of 2048 items, a wave of blocks made
+// on `threads` threads while the sink still writes the last wave (a map's
+// regions and segments are most of its JSON: tens of MB of text).
+template <class Item>
+void in_blocks(std::size_t n, const Item& item, std::string& out, const std::function<void(const std::string&)>& sink,
+               int threads) {
+  constexpr std::size_t kBlock = 2048;
+  const std::size_t blocks = (n + kBlock - 1) / kBlock, wave = 4 * static_cast<std::size_t>(std::max(1, threads));
+  for (std::size_t w = 0; w < blocks; w += wave) {
+    std::vector<std::string> made(std::min(wave, blocks - w));
+    engine::parallel_for(static_cast<int>(made.size()), threads, [&](int j) {
+      const std::size_t b = w + static_cast<std::size_t>(j);
+      std::string text;   // (filled here, stored once)
+      for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) item(i, text);
+      made[static_cast<std::size_t>(j)] = std::move(text);
+    });
+    for (const std::string& text : made) {
+      if (!out.empty()) {
+        sink(out);
+        out.clear();
+      }
+      sink(text);
+    }
   }
+}
+
+// "hidden" (only when asked for): segments with their own end points.
+void hidden(const std::vector<HiddenSegment>& list, std::string& out,
+            const std::function<void(const std::string&)>& sink, int threads) {
+  out += ",\n\"hidden\":[";
+  in_blocks(list.size(), [&](std::size_t i, std::string& o) {
+    const HiddenSegment& h = list[i];
+    o += i ? ",\n" : "\n";
+    o += "{\"from\":";
+    point(o, h.from);
+    o += ",\"to\":";
+    point(o, h.to);
+    o += ",\"kind\":\"";
+    o += to_string(h.kind);
+    o += "\",\"faces\":";
+    faces(o, h.faces);
+    o += '}';
+  }, out, sink, threads);
   out += ']';
 }
 
@@ -78,12 +107,6 @@ std::string to_json(const VisibilityMap& map, int threads) {
 
 void write_json(const VisibilityMap& map, const std::function<void(const std::string&)>& sink, int threads) {
   std::string out;
-  constexpr std::size_t kPiece = std::size_t{4} << 20;
-  auto pass_on = [&] {   // hands over what has piled up, if it is a whole piece
-    if (out.size() < kPiece) return;
-    sink(out);
-    out.clear();
-  };
   out += "{\"format\":\"vismap\",\"version\":1,\n\"scene\":{\"file\":";
   quoted(out, map.scene_file);
   out += ",\"faces\":" + std::to_string(map.scene_faces) + "},\n";
@@ -103,40 +126,39 @@ void write_json(const VisibilityMap& map, const std::function<void(const std::st
   engine::parallel_chunks(static_cast<int>(text.size()), 4096, threads, [&](int, engine::Chunk r) {
     for (int v = r.begin; v < r.end; ++v) point(text[v], map.vertices[v]);
   });
-  out.reserve(2 * kPiece);
   out += "],\n";
-  if (map.has_regions) out += "\"regions\":[";
-  for (std::size_t i = 0; i < map.regions.size() && map.has_regions; ++i) {
-    const Region& g = map.regions[i];
-    out += i ? ",\n" : "\n";
-    out += "{\"face\":" + std::to_string(g.face) + ",\"outer\":";
-    ring(out, g.outer, text);
-    out += ",\"holes\":[";
-    for (std::size_t h = 0; h < g.holes.size(); ++h) {
-      if (h) out += ',';
-      ring(out, g.holes[h], text);
-    }
-    out += "]}";
-    pass_on();
+  if (map.has_regions) {
+    out += "\"regions\":[";
+    in_blocks(map.regions.size(), [&](std::size_t i, std::string& o) {
+      const Region& g = map.regions[i];
+      o += i ? ",\n" : "\n";
+      o += "{\"face\":" + std::to_string(g.face) + ",\"outer\":";
+      ring(o, g.outer, text);
+      o += ",\"holes\":[";
+      for (std::size_t h = 0; h < g.holes.size(); ++h) {
+        if (h) o += ',';
+        ring(o, g.holes[h], text);
+      }
+      o += "]}";
+    }, out, sink, threads);
+    out += "],\n";
   }
-  if (map.has_regions) out += "],\n";
   out += "\"segments\":[";
-  for (std::size_t i = 0; i < map.segments.size(); ++i) {
+  in_blocks(map.segments.size(), [&](std::size_t i, std::string& o) {
     const Segment& s = map.segments[i];
-    out += i ? ",\n" : "\n";
-    out += "{\"from\":";
-    out += text[s.from];
-    out += ",\"to\":";
-    out += text[s.to];
-    out += ",\"kind\":\"";
-    out += to_string(s.kind);
-    out += "\",\"faces\":";
-    faces(out, s.faces);
-    out += '}';
-    pass_on();
-  }
+    o += i ? ",\n" : "\n";
+    o += "{\"from\":";
+    o += text[s.from];
+    o += ",\"to\":";
+    o += text[s.to];
+    o += ",\"kind\":\"";
+    o += to_string(s.kind);
+    o += "\",\"faces\":";
+    faces(o, s.faces);
+    o += '}';
+  }, out, sink, threads);
   out += "]";
-  if (map.has_hidden) hidden(out, map.hidden);
+  if (map.has_hidden) hidden(map.hidden, out, sink, threads);
   out += ",\n\"stats\":{\"seconds\":{";
   char buf[64];
   for (std::size_t i = 0; i < map.stats.seconds.size(); ++i) {
