@@ -19,6 +19,7 @@
 
 #include "arrangements/json_writer.h"
 #include "bench/scene_gen.h"
+#include "engine/lazy_leaves.h"
 #include "engine/parallel.h"
 #include "engine/visibility.h"
 #include "tests/test_support.h"
@@ -267,6 +268,41 @@ TEST(GridIndependence, SameMapForEveryGridConstant) {
       EXPECT_EQ(map_json(scene, view, opt), reference) << "grid c = " << c << ", seed " << seed;
     }
   }
+}
+
+// ---- projected coordinates' intervals ------------------------------------------------
+
+// The interval a projected coordinate's filter reads, made on doubles (Sum2 and
+// an error bound), holds the exact value row . (p, 1) * 2^k and is a few ulps
+// wide: on random rows and points over a wide range of magnitudes, with
+// cancellation (points near the row's zero), and screen scales 2^k.
+TEST(ProjectedBounds, HoldTheExactValueAndAreTight) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::uniform_int_distribution<int> exponent(-60, 60), scale(-70, 70);
+  int checked = 0;
+  for (int n = 0; n < 200000; ++n) {
+    std::array<double, 4> row{unit(rng), unit(rng), unit(rng), std::ldexp(unit(rng), exponent(rng))};
+    const int e = exponent(rng);
+    vismap::Vec3 p{std::ldexp(unit(rng), e), std::ldexp(unit(rng), e), std::ldexp(unit(rng), e)};
+    if (n % 4 == 0) {   // near the plane row . (p, 1) = 0: the sum cancels
+      const double t = -(row[0] * p.x + row[1] * p.y + row[3]) / row[2];
+      if (std::isfinite(t)) p.z = t;
+    }
+    const int k = n % 3 == 0 ? 0 : scale(rng);
+    double lo, hi;
+    if (!vismap::exact::projected_bounds(row, p, k, lo, hi)) continue;
+    mpq_class exact = mpq_class(row[0]) * p.x + mpq_class(row[1]) * p.y + mpq_class(row[2]) * p.z + row[3];
+    if (k > 0) mpq_mul_2exp(exact.get_mpq_t(), exact.get_mpq_t(), static_cast<unsigned long>(k));
+    if (k < 0) mpq_div_2exp(exact.get_mpq_t(), exact.get_mpq_t(), static_cast<unsigned long>(-k));
+    ASSERT_LE(mpq_class(lo), exact) << n;
+    ASSERT_GE(mpq_class(hi), exact) << n;
+    // A few ulps of the value, or of the terms where they cancel.
+    const double size = std::ldexp(std::abs(row[0] * p.x) + std::abs(row[1] * p.y) + std::abs(row[2] * p.z) + std::abs(row[3]), k);
+    EXPECT_LE(hi - lo, 8 * std::ldexp(std::max(std::abs(exact.get_d()), 0x1p-40 * size), -52)) << n;
+    ++checked;
+  }
+  EXPECT_GT(checked, 190000);
 }
 
 // ---- crease angles at the threshold ------------------------------------------------
