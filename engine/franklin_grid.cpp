@@ -54,20 +54,21 @@ std::array<Corner, 4> corners(const Grid& g, int ix, int iy) {
           Corner{g.X[ix], g.Y[iy + 1]}};
 }
 
-bool same_plane(const Facet& f, const Facet& b) { return f.a == b.a && f.b == b.b && f.c == b.c; }
+bool same_plane(const Facet& f, const Facet& b) { return f.plane == b.plane; }
 
 // sign(depth of f - depth of b) at corner p.
 CGAL::Sign depth_order(const Facet& f, const Facet& b, const Corner& p) {
   return filtered_sign(
       [&] {
-        return (approx_of(f.a) - approx_of(b.a)) * p.x + (approx_of(f.b) - approx_of(b.b)) * p.y +
-               (approx_of(f.c) - approx_of(b.c));
+        return (f.plane.approx(0) - b.plane.approx(0)) * p.x + (f.plane.approx(1) - b.plane.approx(1)) * p.y +
+               (f.plane.approx(2) - b.plane.approx(2));
       },
       [&]() -> mpq_class {
         // Mostly facets in one plane (a flat part of a mesh): their exact planes,
         // computed once per facet, are compared instead of evaluated at p.
         if (same_plane(f, b)) return 0;
-        return (to_mpq(f.a) - to_mpq(b.a)) * p.x + (to_mpq(f.b) - to_mpq(b.b)) * p.y + (to_mpq(f.c) - to_mpq(b.c));
+        const auto F = f.plane.exact(), B = b.plane.exact();
+        return (F[0] - B[0]) * p.x + (F[1] - B[1]) * p.y + (F[2] - B[2]);
       });
 }
 
@@ -128,10 +129,13 @@ const Vec3& vertex_at(const std::vector<Vec3>& input, long id) { return input[st
 
 CGAL::Sign depth_above(const P3& p, const Facet& f, const std::vector<Vec3>* world, long id) {
   return filtered_sign(
-      [&] { return approx_of(p.z) - (approx_of(f.a) * approx_of(p.x) + approx_of(f.b) * approx_of(p.y) + approx_of(f.c)); },
+      [&] {
+        return approx_of(p.z) - (f.plane.approx(0) * approx_of(p.x) + f.plane.approx(1) * approx_of(p.y) + f.plane.approx(2));
+      },
       [&]() -> mpq_class {
         if (world && id >= 0 && in_world_plane(*world, id, f)) return 0;
-        return to_mpq(p.z) - (to_mpq(f.a) * to_mpq(p.x) + to_mpq(f.b) * to_mpq(p.y) + to_mpq(f.c));
+        const auto F = f.plane.exact();
+        return to_mpq(p.z) - (F[0] * to_mpq(p.x) + F[1] * to_mpq(p.y) + F[2]);
       });
 }
 
@@ -657,7 +661,8 @@ bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3
       if (shared >= 0 && common_edge(A, B, shared, A.id[k])) return false;
       shared = A.id[k];
     }
-  FT da = A.a - B.a, db = A.b - B.b, dc = A.c - B.c;
+  FT da = A.plane.number(0) - B.plane.number(0), db = A.plane.number(1) - B.plane.number(1),
+     dc = A.plane.number(2) - B.plane.number(2);
   // The crossing line: da x + db y + dc = 0, as p0 + t d. (da, db) != (0, 0):
   // each facet has corners strictly on both sides of the other's plane, so the
   // planes are neither equal nor parallel.
@@ -1449,13 +1454,16 @@ bool cover_at(const Facet& f, Probe& probe, Cover& out, int own) {
 // sign(depth of f - depth of g) at m.
 CGAL::Sign depth_order(const Facet& f, const Facet& g, Probe& m) {
   return filtered_sign(
-      [&] { return (approx_of(f.a) - approx_of(g.a)) * m.ix + (approx_of(f.b) - approx_of(g.b)) * m.iy +
-                   (approx_of(f.c) - approx_of(g.c)); },
+      [&] {
+        return (f.plane.approx(0) - g.plane.approx(0)) * m.ix + (f.plane.approx(1) - g.plane.approx(1)) * m.iy +
+               (f.plane.approx(2) - g.plane.approx(2));
+      },
       [&]() -> mpq_class {
         if (holds_curve(f, m) && holds_curve(g, m)) return 0;   // (both hold m, on their common edge)
         if (uncounted([&] { return same_plane(f, g); })) return 0;
         m.need_exact();
-        return (to_mpq(f.a) - to_mpq(g.a)) * m.ex + (to_mpq(f.b) - to_mpq(g.b)) * m.ey + (to_mpq(f.c) - to_mpq(g.c));
+        const auto F = f.plane.exact(), G = g.plane.exact();
+        return (F[0] - G[0]) * m.ex + (F[1] - G[1]) * m.ey + (F[2] - G[2]);
       });
 }
 
@@ -1463,10 +1471,11 @@ CGAL::Sign depth_order(const Facet& f, const Facet& g, Probe& m) {
 // along the curve's left normal (-dy, dx).
 CGAL::Sign slope_order(const Facet& f, const Facet& g, Probe& m) {
   return filtered_sign(
-      [&] { return (approx_of(f.b) - approx_of(g.b)) * m.idx - (approx_of(f.a) - approx_of(g.a)) * m.idy; },
+      [&] { return (f.plane.approx(1) - g.plane.approx(1)) * m.idx - (f.plane.approx(0) - g.plane.approx(0)) * m.idy; },
       [&]() -> mpq_class {
         m.need_direction();
-        return (to_mpq(f.b) - to_mpq(g.b)) * m.edx - (to_mpq(f.a) - to_mpq(g.a)) * m.edy;
+        const auto F = f.plane.exact(), G = g.plane.exact();
+        return (F[1] - G[1]) * m.edx - (F[0] - G[0]) * m.edy;
       });
 }
 
@@ -1477,7 +1486,7 @@ CGAL::Sign depth_against_curve(const Facet& f, Probe& m) {
       [&] {
         const Interval lambda = m.x_moves ? (m.ix - approx_of(m.s->x)) / m.idx : (m.iy - approx_of(m.s->y)) / m.idy;
         const Interval z = approx_of(m.s->z) + lambda * (approx_of(m.t->z) - approx_of(m.s->z));
-        return approx_of(f.a) * m.ix + approx_of(f.b) * m.iy + approx_of(f.c) - z;
+        return f.plane.approx(0) * m.ix + f.plane.approx(1) * m.iy + f.plane.approx(2) - z;
       },
       [&]() -> mpq_class {
         if (curve_in_plane(f, m)) return 0;
@@ -1485,7 +1494,8 @@ CGAL::Sign depth_against_curve(const Facet& f, Probe& m) {
         const mpq_class lambda = m.x_moves ? mpq_class((m.ex - to_mpq(m.s->x)) / m.edx)
                                            : mpq_class((m.ey - to_mpq(m.s->y)) / m.edy);
         const mpq_class z = to_mpq(m.s->z) + lambda * (to_mpq(m.t->z) - to_mpq(m.s->z));
-        return to_mpq(f.a) * m.ex + to_mpq(f.b) * m.ey + to_mpq(f.c) - z;
+        const auto F = f.plane.exact();
+        return F[0] * m.ex + F[1] * m.ey + F[2] - z;
       });
 }
 

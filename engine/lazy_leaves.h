@@ -1,6 +1,8 @@
 // Kernel numbers whose interval is known at once and whose exact rational is
 // computed only if a predicate's filter fails or the value is written: the
-// projected coordinates of input vertices and the depth planes of facets. Most
+// projected coordinates of input vertices, and the coefficients of a facet's
+// depth plane where a construction takes them as numbers (the plane itself is
+// intervals, its exact values made on demand: ExactSource::plane_of). Most
 // are never needed exactly (an oblique view of a mesh asks for a few in a
 // thousand), so the projection does no rational arithmetic at all.
 // Internal to screen_scene.cpp (CGAL's lazy representations).
@@ -8,6 +10,7 @@
 #include <CGAL/Mpzf.h>
 
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -77,6 +80,20 @@ struct ExactSource {
   bool perspective = false;
   int k = 0;                                   // the screen scale: times 2^k
   std::vector<std::array<std::uint32_t, 3>> spanning;
+  // Each facet's plane once a predicate has needed it (plane_of; null before).
+  mutable std::vector<std::atomic<const std::array<mpq_class, 3>*>> planes;
+
+  ExactSource() = default;
+  ExactSource(const ExactSource&) = delete;
+  ExactSource& operator=(const ExactSource&) = delete;
+  ~ExactSource() {
+    for (auto& p : planes) delete p.load();
+  }
+  // Room for n facets' spanning corners and planes.
+  void reserve_facets(std::size_t n) {
+    spanning.resize(n);
+    planes = std::vector<std::atomic<const std::array<mpq_class, 3>*>>(n);
+  }
 
   // Row r of the view applied to input vertex v, times 2^k if scaled (Mpzf below).
   CGAL::Mpzf row_at(int r, std::uint32_t v, bool scaled) const;
@@ -107,6 +124,16 @@ struct ExactSource {
     if (k > 0) mpq_mul_2exp(abc[2].get_mpq_t(), abc[2].get_mpq_t(), static_cast<unsigned long>(k));
     if (k < 0) mpq_div_2exp(abc[2].get_mpq_t(), abc[2].get_mpq_t(), static_cast<unsigned long>(-k));
     return abc;
+  }
+  // Facet f's plane (as plane()), computed once, on whichever thread asks first,
+  // and kept: a facet whose depth a predicate needs exactly is mostly asked again.
+  const std::array<mpq_class, 3>& plane_of(std::size_t f) const {
+    if (const auto* known = planes[f].load(std::memory_order_acquire)) return *known;
+    const auto* made = new std::array<mpq_class, 3>(plane(f));
+    const std::array<mpq_class, 3>* first = nullptr;
+    if (planes[f].compare_exchange_strong(first, made, std::memory_order_acq_rel, std::memory_order_acquire)) return *made;
+    delete made;   // (another thread's came first)
+    return *first;
   }
 };
 
@@ -158,14 +185,13 @@ class PerspectiveRep final : public SourceLeaf {
   }
 };
 
-// One coefficient of facet item_'s depth plane (row_ 0: a, 1: b, 2: c): its
-// interval from the screen points' intervals, its exact value from the world
-// (each coefficient on its own: most are never needed exactly, and no state is
-// shared between them).
+// One coefficient of facet item_'s depth plane (row_ 0: a, 1: b, 2: c), made
+// where a construction needs it as a number (DepthPlane::number): its interval
+// the plane's, its exact value the source's plane_of (made once per facet).
 class PlaneRep final : public SourceLeaf {
  public:
   using SourceLeaf::SourceLeaf;
-  void update_exact() const override { set_exact(source_->plane(item_)[static_cast<std::size_t>(row_)]); }
+  void update_exact() const override { set_exact(source_->plane_of(item_)[static_cast<std::size_t>(row_)]); }
 };
 #endif
 
@@ -225,35 +251,28 @@ inline int projected_sign(const std::array<double, 4>& row, const Vec3& p) {
 }
 
 // The depth plane of three screen points u, v, w with the given exact sign of
-// the projected area (non-zero): z = a x + b y + c. Each coefficient is a lazy
-// leaf whose interval comes from the points' intervals; false where those
-// intervals cannot tell the area's sign (the caller then tries other points).
-inline bool depth_plane(const P3& u, const P3& v, const P3& w, [[maybe_unused]] const ExactSource& source,
-                        [[maybe_unused]] std::uint32_t facet, FT& a, FT& b, FT& c) {
+// the projected area (non-zero): z = a x + b y + c, intervals of its
+// coefficients from the points' intervals (the float variant: its doubles);
+// false where those intervals cannot tell the area's sign (the caller then
+// tries other points).
+inline bool depth_plane(const P3& u, const P3& v, const P3& w, std::array<Interval, 3>& abc) {
 #ifdef VISMAP_FLOAT_KERNEL
   const double x1 = v.x - u.x, y1 = v.y - u.y, z1 = v.z - u.z, x2 = w.x - u.x, y2 = w.y - u.y, z2 = w.z - u.z;
   const double nz = x1 * y2 - y1 * x2;
   if (nz == 0) return false;
-  a = (z1 * y2 - y1 * z2) / nz;
-  b = (x1 * z2 - z1 * x2) / nz;
-  c = u.z - a * u.x - b * u.y;
+  const double a = (z1 * y2 - y1 * z2) / nz, b = (x1 * z2 - z1 * x2) / nz;
+  abc = {Interval(a), Interval(b), Interval(u.z - a * u.x - b * u.y)};
   return true;
 #else
-  Interval ia, ib, ic;
-  {
-    CGAL::Protect_FPU_rounding<true> upward;
-    const Interval x0 = approx_of(u.x), y0 = approx_of(u.y), z0 = approx_of(u.z);
-    const Interval x1 = approx_of(v.x) - x0, y1 = approx_of(v.y) - y0, z1 = approx_of(v.z) - z0;
-    const Interval x2 = approx_of(w.x) - x0, y2 = approx_of(w.y) - y0, z2 = approx_of(w.z) - z0;
-    const Interval nz = x1 * y2 - y1 * x2;
-    if (nz.inf() <= 0 && nz.sup() >= 0) return false;
-    ia = (z1 * y2 - y1 * z2) / nz;
-    ib = (x1 * z2 - z1 * x2) / nz;
-    ic = z0 - ia * x0 - ib * y0;
-  }
-  a = FT(new PlaneRep(ia, source, facet, 0));
-  b = FT(new PlaneRep(ib, source, facet, 1));
-  c = FT(new PlaneRep(ic, source, facet, 2));
+  CGAL::Protect_FPU_rounding<true> upward;
+  const Interval x0 = approx_of(u.x), y0 = approx_of(u.y), z0 = approx_of(u.z);
+  const Interval x1 = approx_of(v.x) - x0, y1 = approx_of(v.y) - y0, z1 = approx_of(v.z) - z0;
+  const Interval x2 = approx_of(w.x) - x0, y2 = approx_of(w.y) - y0, z2 = approx_of(w.z) - z0;
+  const Interval nz = x1 * y2 - y1 * x2;
+  if (nz.inf() <= 0 && nz.sup() >= 0) return false;
+  abc[0] = (z1 * y2 - y1 * z2) / nz;
+  abc[1] = (x1 * z2 - z1 * x2) / nz;
+  abc[2] = z0 - abc[0] * x0 - abc[1] * y0;
   return true;
 #endif
 }

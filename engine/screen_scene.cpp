@@ -458,6 +458,64 @@ bool CurveMaker::make(const std::vector<Facet>& facets, const WorldPiece& wp, Cu
   return true;
 }
 
+DepthPlane DepthPlane::of_doubles(double a, double b, double c) {
+  DepthPlane p;
+  p.approx_ = {Interval(a), Interval(b), Interval(c)};
+  return p;
+}
+
+DepthPlane DepthPlane::of_source(const Interval& a, const Interval& b, const Interval& c, const ExactSource& source,
+                                 std::uint32_t facet) {
+  DepthPlane p;
+  p.approx_ = {a, b, c};
+  p.source_ = &source;
+  p.facet_ = facet;
+  return p;
+}
+
+DepthPlane DepthPlane::of_rationals(const mpq_class& a, const mpq_class& b, const mpq_class& c, const ExactSource& source,
+                                    std::uint32_t facet) {
+  DepthPlane p;
+  const std::array<const mpq_class*, 3> abc{&a, &b, &c};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::pair<double, double> i = CGAL::to_interval(*abc[k]);
+    p.approx_[k] = Interval(i.first, i.second);
+  }
+  p.source_ = &source;
+  p.facet_ = facet;
+  source.planes[facet].store(new std::array<mpq_class, 3>{a, b, c});   // (as if asked for: plane_of)
+  return p;
+}
+
+std::array<mpq_class, 3> DepthPlane::exact() const {
+#ifndef VISMAP_FLOAT_KERNEL
+  if (source_) return source_->plane_of(facet_);
+#endif
+  return {mpq_class(approx_[0].inf()), mpq_class(approx_[1].inf()), mpq_class(approx_[2].inf())};
+}
+
+FT DepthPlane::number(int k) const {
+  const auto i = static_cast<std::size_t>(k);
+  if (!source_ || approx_[i].is_point()) return FT(approx_[i].inf());
+#ifdef VISMAP_FLOAT_KERNEL
+  return FT(approx_[i].inf());
+#else
+  return FT(new PlaneRep(approx_[i], *source_, facet_, k));
+#endif
+}
+
+bool DepthPlane::operator==(const DepthPlane& o) const {
+  for (std::size_t k = 0; k < 3; ++k)
+    if (approx_[k].sup() < o.approx_[k].inf() || o.approx_[k].sup() < approx_[k].inf()) return false;
+  const bool points = [&] {
+    for (std::size_t k = 0; k < 3; ++k)
+      if (!approx_[k].is_point() || !o.approx_[k].is_point()) return false;
+    return true;
+  }();
+  if (points) return true;   // (equal points: the intervals met)
+  return exact() == o.exact();
+}
+
 namespace {
 
 // Back faces of closed components hide nothing that their component's front
@@ -552,7 +610,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   exact->m = view.m;
   exact->perspective = view.perspective;
   exact->k = k;
-  exact->spanning.resize(wf.facets.size());
+  exact->reserve_facets(wf.facets.size());
   ss.exact = exact;
   M.exact = exact.get();
   std::vector<char>& front = M.front;
@@ -664,18 +722,19 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
           const Interval zi = approx_of(p.z);
           return zi.inf() == z0i.inf() && zi.sup() == z0i.sup();
         })) {
-      f.a = f.b = FT(0);
-      f.c = FT(z0i.inf());
+      f.plane = DepthPlane::of_doubles(0, 0, z0i.inf());
       return;
     }
     // depth = a x + b y + c from three vertices that are not collinear on screen:
-    // lazy leaves whose intervals come from the vertices' (exact only on demand),
-    // or, where no three vertices' intervals can tell, computed once in GMP.
+    // intervals from the vertices' (exact values from the world, on demand), or,
+    // where no three vertices' intervals can tell, computed once in GMP.
     exact->spanning[fi] = spanning_ids(scene, w);
-    bool lazy = false;
-    for (std::size_t k = 1; k + 1 < nv && !lazy; ++k)
-      lazy = depth_plane(f.v[0], f.v[k], f.v[k + 1], *exact, static_cast<std::uint32_t>(fi), f.a, f.b, f.c);
-    if (lazy) return;
+    std::array<Interval, 3> abc;
+    for (std::size_t k = 1; k + 1 < nv; ++k)
+      if (depth_plane(f.v[0], f.v[k], f.v[k + 1], abc)) {
+        f.plane = DepthPlane::of_source(abc[0], abc[1], abc[2], *exact, static_cast<std::uint32_t>(fi));
+        return;
+      }
     const Num x0 = num(f.v[0].x), y0 = num(f.v[0].y), z0 = num(f.v[0].z);
     for (std::size_t k = 1; k + 1 < nv; ++k) {
       const P3 &p1 = f.v[k], &p2 = f.v[k + 1];
@@ -684,9 +743,8 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
       const Num nz = x1 * y2 - y1 * x2;
       if (nz == 0) continue;
       const Num a = (z1 * y2 - y1 * z2) / nz, b = (x1 * z2 - z1 * x2) / nz;
-      f.a = FT(a);
-      f.b = FT(b);
-      f.c = FT(Num(z0 - a * x0 - b * y0));
+      f.plane = DepthPlane::of_rationals(to_mpq(a), to_mpq(b), to_mpq(Num(z0 - a * x0 - b * y0)), *exact,
+                                         static_cast<std::uint32_t>(fi));
       break;
     }
   };

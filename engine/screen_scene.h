@@ -63,9 +63,43 @@ class Corners {
 // scenes of 2^31 vertices or more), or -1: none.
 using VertexId = std::int32_t;
 
-// (The small fields first, packed: 176 bytes; a million facets are common. Boxes
-// and depth ranges stay doubles: an orthographic view does not translate, and a
-// float's step near a georeferenced 5e6 is 0.5.)
+// A facet's depth plane z = a x + b y + c (a facet that is not edge-on):
+// intervals that contain its coefficients, and where those are not the exact
+// values themselves, the screen scene's ExactSource, which makes the exact ones
+// from the world by facet number (most planes are never needed exactly: three
+// lazy numbers per facet were 192 bytes; this is 64).
+class DepthPlane {
+ public:
+  DepthPlane() = default;
+  // Coefficients that are doubles exactly.
+  static DepthPlane of_doubles(double a, double b, double c);
+  // Intervals of coefficients whose exact values `source` makes for `facet`.
+  static DepthPlane of_source(const Interval& a, const Interval& b, const Interval& c, const ExactSource& source,
+                              std::uint32_t facet);
+  // Coefficients computed as rationals, kept by `source` as facet's plane.
+  static DepthPlane of_rationals(const mpq_class& a, const mpq_class& b, const mpq_class& c, const ExactSource& source,
+                                 std::uint32_t facet);
+
+  // Coefficient k's interval (0: a, 1: b, 2: c).
+  const Interval& approx(int k) const { return approx_[static_cast<std::size_t>(k)]; }
+  // The three coefficients, exactly.
+  std::array<mpq_class, 3> exact() const;
+  // Coefficient k as a kernel number (a lazy leaf where it is not a double),
+  // for the constructions that need one: made at each call.
+  FT number(int k) const;
+  // The same plane, exactly.
+  bool operator==(const DepthPlane& o) const;
+
+ private:
+  std::array<Interval, 3> approx_{Interval(0), Interval(0), Interval(0)};
+  const ExactSource* source_ = nullptr;   // (null: the intervals are points, the exact values)
+  std::uint32_t facet_ = 0;
+};
+
+// (The small fields first, packed: 208 bytes, 64 of them the depth plane; a
+// million facets are common. Boxes and depth ranges stay doubles: an
+// orthographic view does not translate, and a float's step near a
+// georeferenced 5e6 is 0.5.)
 struct Facet {
   int face = -1;                 // input face index
   Facing facing = Facing::EdgeOn;
@@ -85,9 +119,9 @@ struct Facet {
   SmallVec<VertexId, 4> id;      // id[k]: v[k]'s canonical vertex id, or -1 where the near
                                  // plane cut the polygon (as Curve::vs): connectivity answers
                                  // some predicates without arithmetic
-  FT a, b, c;                    // depth(x, y) = a x + b y + c   (not edge-on)
+  DepthPlane plane;              // depth(x, y) = a x + b y + c   (not edge-on)
   CGAL::Bbox_2 box;              // contains the exact projection
-  FT depth_at(const P2& p) const { return a * p.x() + b * p.y() + c; }
+  FT depth_at(const P2& p) const { return plane.number(0) * p.x() + plane.number(1) * p.y() + plane.number(2); }
   // Whether canonical vertex v (not -1) is a corner: then it lies in the plane.
   bool has_vertex(long v) const { return v >= 0 && std::find(id.begin(), id.end(), v) != id.end(); }
 };
