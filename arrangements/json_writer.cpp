@@ -50,6 +50,20 @@ void faces(std::string& out, const std::vector<int>& f) {
   out += ']';
 }
 
+// A segment's object: from() and to() append its end points.
+template <class From, class To>
+void segment(std::string& out, From&& from, To&& to, EdgeKind kind, const std::vector<int>& f) {
+  out += "{\"from\":";
+  from();
+  out += ",\"to\":";
+  to();
+  out += ",\"kind\":\"";
+  out += to_string(kind);
+  out += "\",\"faces\":";
+  faces(out, f);
+  out += '}';
+}
+
 // Items [0, n), item(i, text) appending item i's text, handed to `sink` in
 // order: after what `out` holds, in blocks of 2048 items, a wave of blocks made
 // on `threads` threads while the sink still writes the last wave (a map's
@@ -84,15 +98,7 @@ void hidden(const std::vector<HiddenSegment>& list, std::string& out,
   in_blocks(list.size(), [&](std::size_t i, std::string& o) {
     const HiddenSegment& h = list[i];
     o += i ? ",\n" : "\n";
-    o += "{\"from\":";
-    point(o, h.from);
-    o += ",\"to\":";
-    point(o, h.to);
-    o += ",\"kind\":\"";
-    o += to_string(h.kind);
-    o += "\",\"faces\":";
-    faces(o, h.faces);
-    o += '}';
+    segment(o, [&] { point(o, h.from); }, [&] { point(o, h.to); }, h.kind, h.faces);
   }, out, sink, threads);
   out += ']';
 }
@@ -147,15 +153,7 @@ void write_json(const VisibilityMap& map, const std::function<void(const std::st
   in_blocks(map.segments.size(), [&](std::size_t i, std::string& o) {
     const Segment& s = map.segments[i];
     o += i ? ",\n" : "\n";
-    o += "{\"from\":";
-    o += text[s.from];
-    o += ",\"to\":";
-    o += text[s.to];
-    o += ",\"kind\":\"";
-    o += to_string(s.kind);
-    o += "\",\"faces\":";
-    faces(o, s.faces);
-    o += '}';
+    segment(o, [&] { o += text[s.from]; }, [&] { o += text[s.to]; }, s.kind, s.faces);
   }, out, sink, threads);
   out += "]";
   if (map.has_hidden) hidden(map.hidden, out, sink, threads);

@@ -130,7 +130,8 @@ const Vec3& vertex_at(const std::vector<Vec3>& input, long id) { return input[st
 CGAL::Sign depth_above(const P3& p, const Facet& f, const std::vector<Vec3>* world, long id) {
   return filtered_sign(
       [&] {
-        return approx_of(p.z) - (f.plane.approx(0) * approx_of(p.x) + f.plane.approx(1) * approx_of(p.y) + f.plane.approx(2));
+        return approx_of(p.z) -
+               (f.plane.approx(0) * approx_of(p.x) + f.plane.approx(1) * approx_of(p.y) + f.plane.approx(2));
       },
       [&]() -> mpq_class {
         if (world && id >= 0 && in_world_plane(*world, id, f)) return 0;

@@ -131,7 +131,8 @@ struct ExactSource {
     if (const auto* known = planes[f].load(std::memory_order_acquire)) return *known;
     const auto* made = new std::array<mpq_class, 3>(plane(f));
     const std::array<mpq_class, 3>* first = nullptr;
-    if (planes[f].compare_exchange_strong(first, made, std::memory_order_acq_rel, std::memory_order_acquire)) return *made;
+    if (planes[f].compare_exchange_strong(first, made, std::memory_order_acq_rel, std::memory_order_acquire))
+      return *made;
     delete made;   // (another thread's came first)
     return *first;
   }

@@ -87,7 +87,9 @@ inline std::pair<FT, FT> edge_crossing(const P3& a, const P3& b, const Line& f) 
 }
 
 // The depth of facet F's plane at (x, y).
-inline FT depth_of(const Facet& F, const FT& x, const FT& y) { return F.plane.number(0) * x + F.plane.number(1) * y + F.plane.number(2); }
+inline FT depth_of(const Facet& F, const FT& x, const FT& y) {
+  return F.plane.number(0) * x + F.plane.number(1) * y + F.plane.number(2);
+}
 
 // Which sides of a line (or plane) a polygon has vertices strictly on.
 enum : int { kNeg = 1, kPos = 2, kBoth = 3 };
@@ -108,7 +110,9 @@ inline int sides_of(const std::vector<P3>& v, const Line& f) {
 // before any rational is made.
 inline CGAL::Sign plane_side(const P3& p, const Facet& G, const std::vector<Vec3>* world = nullptr, long id = -1) {
   return filtered_sign(
-      [&] { return p.z.approx() - (G.plane.approx(0) * p.x.approx() + G.plane.approx(1) * p.y.approx() + G.plane.approx(2)); },
+      [&] {
+        return p.z.approx() - (G.plane.approx(0) * p.x.approx() + G.plane.approx(1) * p.y.approx() + G.plane.approx(2));
+      },
       [&]() -> mpq_class {
         if (world && id >= 0 && in_world_plane(*world, id, G)) return 0;
         const auto P = G.plane.exact();

@@ -147,8 +147,8 @@ std::pair<N, N> crease_terms(const Spanning& f, const Spanning& g, double c) {
 // times those. False where D is 0 or outside 2^-100..2^100 (products of degree
 // 8 must neither underflow nor overflow).
 bool crease_signs_on_doubles(const Spanning& f, const Spanning& g, double c, int& sd, int& se) {
-  const std::array<double, 3> a1{f.p.x - f.o.x, f.p.y - f.o.y, f.p.z - f.o.z}, b1{f.q.x - f.o.x, f.q.y - f.o.y, f.q.z - f.o.z},
-      a2{g.p.x - g.o.x, g.p.y - g.o.y, g.p.z - g.o.z}, b2{g.q.x - g.o.x, g.q.y - g.o.y, g.q.z - g.o.z};
+  auto minus = [](const Vec3& p, const Vec3& o) { return std::array<double, 3>{p.x - o.x, p.y - o.y, p.z - o.z}; };
+  const std::array<double, 3> a1 = minus(f.p, f.o), b1 = minus(f.q, f.o), a2 = minus(g.p, g.o), b2 = minus(g.q, g.o);
   double D = 0;
   for (const auto* v : {&a1, &b1, &a2, &b2})
     for (double x : *v) D = std::max(D, std::abs(x));
@@ -473,8 +473,8 @@ DepthPlane DepthPlane::of_source(const Interval& a, const Interval& b, const Int
   return p;
 }
 
-DepthPlane DepthPlane::of_rationals(const mpq_class& a, const mpq_class& b, const mpq_class& c, const ExactSource& source,
-                                    std::uint32_t facet) {
+DepthPlane DepthPlane::of_rationals(const mpq_class& a, const mpq_class& b, const mpq_class& c,
+                                    const ExactSource& source, std::uint32_t facet) {
   DepthPlane p;
   const std::array<const mpq_class*, 3> abc{&a, &b, &c};
   for (std::size_t k = 0; k < 3; ++k) {

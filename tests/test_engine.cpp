@@ -298,7 +298,8 @@ TEST(ProjectedBounds, HoldTheExactValueAndAreTight) {
     ASSERT_LE(mpq_class(lo), exact) << n;
     ASSERT_GE(mpq_class(hi), exact) << n;
     // A few ulps of the value, or of the terms where they cancel.
-    const double size = std::ldexp(std::abs(row[0] * p.x) + std::abs(row[1] * p.y) + std::abs(row[2] * p.z) + std::abs(row[3]), k);
+    const double size =
+        std::ldexp(std::abs(row[0] * p.x) + std::abs(row[1] * p.y) + std::abs(row[2] * p.z) + std::abs(row[3]), k);
     EXPECT_LE(hi - lo, 8 * std::ldexp(std::max(std::abs(exact.get_d()), 0x1p-40 * size), -52)) << n;
     ++checked;
   }
@@ -339,7 +340,9 @@ TEST(Crease, KindAtTheThresholdAsTheExactTest) {
         double z = std::sin(theta);
         for (int k = 0; k < 300; ++k) z = std::nextafter(z, -1.0);
         for (int k = -300; k <= 300; k += 3) {
-          auto at = [&](double x, double y, double h) { return Vec3{(x + offset) * scale, (y + offset) * scale, h * scale}; };
+          auto at = [&](double x, double y, double h) {
+            return Vec3{(x + offset) * scale, (y + offset) * scale, h * scale};
+          };
           vismap::Scene scene;
           scene.vertices = {at(0, 0, 0), at(1, 0, 0), at(0.5, 1, 0), at(0.5, -std::cos(theta), z)};
           scene.faces = {{0, 1, 2}, {1, 0, 3}};
