@@ -563,8 +563,8 @@ bool on_one_side(const Facet& F, const Facet& G, Side&& side) {
 // (parallel, or central for points in front of the eye) maps G's plane to its
 // screen plane and keeps each side of it on one side, so the answer is the screen's.
 bool one_side_in_world(const Facet& F, const Facet& G, const std::vector<Vec3>& world) {
-  const Vec3 &o = vertex_at(world, G.id[0]), &a = vertex_at(world, G.id[1]), &b = vertex_at(world, G.id[2]);
-  return on_one_side(F, G, [&](std::size_t k) { return world::orientation(o, a, b, vertex_at(world, F.id[k])); });
+  const world::PlaneSide side(vertex_at(world, G.id[0]), vertex_at(world, G.id[1]), vertex_at(world, G.id[2]));
+  return on_one_side(F, G, [&](std::size_t k) { return side(vertex_at(world, F.id[k])); });
 }
 
 // Whether triangle F (of a simple planar polygon) has a diagonal in G's plane:

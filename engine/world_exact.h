@@ -54,6 +54,42 @@ inline int orientation(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& 
   return det<CGAL::Mpzf>(o, a, b, c).sign();
 }
 
+// orientation(o, a, b, p) for several points p against one plane: its normal
+// (a - o) x (b - o) made once in doubles, then sign(n . (p - o)) where a static
+// bound settles it (|error| <= 54 u A B C, u = 2^-53, with A, B, C the largest
+// |coordinate| of a - o, b - o and p - o; taken as 2^-44 A B C), else
+// orientation()'s, exact where it must be.
+class PlaneSide {
+ public:
+  PlaneSide(const Vec3& o, const Vec3& a, const Vec3& b) : o_(o), a_(a), b_(b) {
+    const double ax = a.x - o.x, ay = a.y - o.y, az = a.z - o.z;
+    const double bx = b.x - o.x, by = b.y - o.y, bz = b.z - o.z;
+    n_ = {ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx};
+    const double A = std::max({std::abs(ax), std::abs(ay), std::abs(az)});
+    const double B = std::max({std::abs(bx), std::abs(by), std::abs(bz)});
+    ab_ = A * B;
+    usable_ = A >= 0x1p-300 && A <= 0x1p300 && B >= 0x1p-300 && B <= 0x1p300;
+  }
+  int operator()(const Vec3& p) const {
+    if (usable_) {
+      const double cx = p.x - o_.x, cy = p.y - o_.y, cz = p.z - o_.z;
+      const double C = std::max({std::abs(cx), std::abs(cy), std::abs(cz)});
+      if (C >= 0x1p-300 && C <= 0x1p300) {
+        const double d = n_[0] * cx + n_[1] * cy + n_[2] * cz, bound = 0x1p-44 * ab_ * C;
+        if (d > bound) return 1;
+        if (d < -bound) return -1;
+      }
+    }
+    return orientation(o_, a_, b_, p);
+  }
+
+ private:
+  const Vec3 &o_, &a_, &b_;
+  std::array<double, 3> n_;
+  double ab_;
+  bool usable_;
+};
+
 // Whether every coordinate of the points is at most 2^e in magnitude: interval
 // products of degree up to about 1000 / e cannot overflow then. An interval with
 // an infinite bound is not trusted (inf * 0 is NaN, which a later max can drop).

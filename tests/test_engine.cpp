@@ -21,6 +21,7 @@
 #include "bench/scene_gen.h"
 #include "engine/lazy_leaves.h"
 #include "engine/parallel.h"
+#include "engine/world_exact.h"
 #include "engine/visibility.h"
 #include "tests/test_support.h"
 
@@ -304,6 +305,46 @@ TEST(ProjectedBounds, HoldTheExactValueAndAreTight) {
     ++checked;
   }
   EXPECT_GT(checked, 190000);
+}
+
+// ---- a point's side of a facet's plane, in the world ------------------------------
+
+// world::PlaneSide (one normal in doubles, a static bound, then the exact
+// orientation) gives orientation()'s exact sign: on points nearly in the plane
+// (made in doubles from the plane's own vectors, so off it by rounding only, or
+// exactly in it on integer coordinates), far from the origin and at scales from
+// 2^-200 to 2^200. With its bound taken away it fails here.
+TEST(PlaneSide, SignAsTheExactOrientation) {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::uniform_int_distribution<int> small(-8, 8), exponent(-200, 200);
+  int zeros = 0, checked = 0;
+  for (int n = 0; n < 100000; ++n) {
+    const double scale = std::ldexp(1.0, exponent(rng)), offset = n % 2 ? 0 : 1e6 * scale;
+    vismap::Vec3 o, a, b, p;
+    if (n % 3 == 0) {   // integer coordinates: p exactly in the plane
+      auto pt = [&](int x, int y, int z) { return vismap::Vec3{x * scale, y * scale, z * scale}; };
+      const int ax = small(rng), ay = small(rng), az = small(rng), bx = small(rng), by = small(rng), bz = small(rng);
+      const int s = small(rng), t = small(rng);
+      o = pt(0, 0, 0);
+      a = pt(ax, ay, az);
+      b = pt(bx, by, bz);
+      p = pt(s * ax + t * bx, s * ay + t * by, s * az + t * bz);
+    } else {
+      auto pt = [&] { return vismap::Vec3{offset + unit(rng) * scale, offset + unit(rng) * scale, unit(rng) * scale}; };
+      o = pt();
+      a = pt();
+      b = pt();
+      const double s = unit(rng), t = unit(rng);
+      p = {o.x + s * (a.x - o.x) + t * (b.x - o.x), o.y + s * (a.y - o.y) + t * (b.y - o.y),
+           o.z + s * (a.z - o.z) + t * (b.z - o.z)};
+    }
+    const int want = vismap::engine::world::det<CGAL::Mpzf>(o, a, b, p).sign();
+    ASSERT_EQ(vismap::engine::world::PlaneSide(o, a, b)(p), want) << n;
+    zeros += want == 0;
+    ++checked;
+  }
+  EXPECT_GT(zeros, 10000);   // (the exact zeros are there)
 }
 
 // ---- crease angles at the threshold ------------------------------------------------
