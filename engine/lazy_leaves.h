@@ -32,21 +32,29 @@ inline CGAL::Mpzf projected_mpzf(const std::array<double, 4>& row, const Vec3& p
   return s;
 }
 
-// An interval around (row . (p, 1)) * 2^k from doubles alone: each product
-// split exactly in two (fma), the seven parts summed as in twice the precision
-// (Ogita, Rump and Oishi's Sum2: two-sum errors gathered), then widened by that
-// sum's error bound and an ulp either side. Three or four ulps wide (against
-// projected_mpzf's one): no GMP number is made for a filter's interval. False
-// where a product or the scale could leave the range in which that holds (the
-// caller then takes projected_mpzf's).
+// The interval around (row . (p, 1)) * 2^k that projected_mpzf's gives (the
+// exact value rounded down and up: one ulp, or a point where it is a double),
+// from doubles alone: each product split exactly in two (fma), the seven parts
+// summed as in twice the precision (Ogita, Rump and Oishi's Sum2: two-sum
+// errors gathered), and the sum's last rounding error, told apart from Sum2's
+// own (< 2^-100 of the parts' size), says on which side of the rounded sum the
+// exact value lies. No GMP number is made. (The same interval, so that filters
+// decide as they did: wider ones send more predicates to exact values, and a
+// lazy construction's interval, refined when one is evaluated, then changes
+// later filters' outcomes by the order in which threads got there.) False
+// where it cannot tell (a sum that cancels to within Sum2's error of a double)
+// or a product or the scale could leave the range in which this holds: the
+// caller then takes projected_mpzf's.
 inline bool projected_bounds(const std::array<double, 4>& row, const Vec3& p, int k, double& lo, double& hi) {
   const double v[3] = {p.x, p.y, p.z};
   if (!(std::abs(row[3]) < 0x1p900)) return false;
   double sum = row[3], err = 0, size = std::abs(row[3]);
+  bool exact = true;   // every two-sum exact: sum is the value
   auto add = [&](double t) {   // (two-sum: sum + t = new sum + q exactly)
     const double s = sum + t, b = s - sum, q = (sum - (s - b)) + (t - b);
     sum = s;
     err += q;
+    exact &= q == 0;
     size += std::abs(t);
   };
   for (int c = 0; c < 3; ++c) {
@@ -55,11 +63,23 @@ inline bool projected_bounds(const std::array<double, 4>& row, const Vec3& p, in
     add(prod);
     add(std::fma(m, v[c], -prod));   // (exact: prod is far from underflow)
   }
-  // |result - exact| <= u |exact| + gamma_6^2 size (u = 2^-53): taken as
-  // 2^-52 |result| + 2^-100 size, to cover the bound's own rounding.
-  const double result = sum + err, bound = std::abs(result) * 0x1p-52 + size * 0x1p-100;
-  lo = std::nextafter(result - bound, -HUGE_VAL);
-  hi = std::nextafter(result + bound, HUGE_VAL);
+  if (exact) {
+    lo = hi = sum;
+  } else {
+    // value = result + r + e exactly, r the last rounding's error (two-sum),
+    // |e| <= gamma_5 u size < 2^-101 size (err's own rounding).
+    const double result = sum + err, b = result - sum, r = (sum - (result - b)) + (err - b);
+    const double tail = size * 0x1p-100;
+    if (r > tail) {
+      lo = result;
+      hi = std::nextafter(result, HUGE_VAL);
+    } else if (r < -tail) {
+      lo = std::nextafter(result, -HUGE_VAL);
+      hi = result;
+    } else {
+      return false;   // (the value is within Sum2's error of a double: rare, see above)
+    }
+  }
   if (k != 0) {
     lo = std::ldexp(lo, k);
     hi = std::ldexp(hi, k);
@@ -207,10 +227,9 @@ inline FT projected_number(const ExactSource& source, std::uint32_t v, int r, bo
 #else
   std::pair<double, double> i;
   if (!projected_bounds(source.m[static_cast<std::size_t>(r)], (*source.vertices)[v], scaled ? source.k : 0, i.first,
-                        i.second)) {
+                        i.second))
     i = source.row_at(r, v, scaled).to_interval();
-    if (i.first == i.second) return FT(i.first);
-  }
+  if (i.first == i.second) return FT(i.first);
   return FT(new ProjectedRep(Interval(i.first, i.second), source, v, r, scaled));
 #endif
 }
