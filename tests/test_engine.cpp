@@ -273,9 +273,9 @@ TEST(GridIndependence, SameMapForEveryGridConstant) {
 
 // ---- projected coordinates' intervals ------------------------------------------------
 
-// The interval a projected coordinate's filter reads, made on doubles (Sum2 and
-// the last rounding's error), where it is made, is projected_mpzf's (the exact
-// value rounded down and up, which holds row . (p, 1) * 2^k): on
+// The interval a projected coordinate's filter reads, made on doubles (Sum2
+// and its last rounding's error), holds row . (p, 1) * 2^k and is exactly
+// projected_mpzf's (the value rounded down and up) wherever it is made: on
 // random rows and points over a wide range of magnitudes, with cancellation
 // (points near the row's zero), and screen scales 2^k. (Wider intervals made
 // the counted predicates depend on the thread count: see projected_bounds.)
