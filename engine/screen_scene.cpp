@@ -147,19 +147,11 @@ std::pair<N, N> crease_terms(const Spanning& f, const Spanning& g, double c) {
 // times those. False where D is 0 or outside 2^-100..2^100 (products of degree
 // 8 must neither underflow nor overflow).
 bool crease_signs_on_doubles(const Spanning& f, const Spanning& g, double c, int& sd, int& se) {
-  auto minus = [](const Vec3& p, const Vec3& o) { return std::array<double, 3>{p.x - o.x, p.y - o.y, p.z - o.z}; };
-  const std::array<double, 3> a1 = minus(f.p, f.o), b1 = minus(f.q, f.o), a2 = minus(g.p, g.o), b2 = minus(g.q, g.o);
   double D = 0;
-  for (const auto* v : {&a1, &b1, &a2, &b2})
-    for (double x : *v) D = std::max(D, std::abs(x));
+  for (const auto& [p, o] : {std::pair(&f.p, &f.o), std::pair(&f.q, &f.o), std::pair(&g.p, &g.o), std::pair(&g.q, &g.o)})
+    D = std::max({D, std::abs(p->x - o->x), std::abs(p->y - o->y), std::abs(p->z - o->z)});
   if (!(D >= 0x1p-100 && D <= 0x1p100)) return false;
-  auto cross = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
-    return std::array<double, 3>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-  };
-  const auto n1 = cross(a1, b1), n2 = cross(a2, b2);
-  const double d = n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2];
-  const double l = (n1[0] * n1[0] + n1[1] * n1[1] + n1[2] * n1[2]) * (n2[0] * n2[0] + n2[1] * n2[1] + n2[2] * n2[2]);
-  const double e = d * d - c * c * l;
+  const auto [d, e] = crease_terms<double>(f, g, c);
   const double D4 = (D * D) * (D * D), d_bound = 0x1p-40 * D4, e_bound = 0x1p-34 * (D4 * D4);
   if (std::abs(d) <= d_bound || std::abs(e) <= e_bound) return false;
   sd = d > 0 ? 1 : -1;
@@ -170,9 +162,8 @@ bool crease_signs_on_doubles(const Spanning& f, const Spanning& g, double c, int
 bool is_crease(const Spanning& f, const Spanning& g, double c) {
   int sd = 2, se = 2;   // signs of d and of d^2 - c^2 l (2: not known)
   // (Products of degree 8: coordinates within 2^100 cannot overflow them.)
-  if (crease_signs_on_doubles(f, g, c, sd, se)) {
-    // (settled)
-  } else if (world::within(100, {&f.o, &f.p, &f.q, &g.o, &g.p, &g.q})) {
+  const bool settled = crease_signs_on_doubles(f, g, c, sd, se);
+  if (!settled && world::within(100, {&f.o, &f.p, &f.q, &g.o, &g.p, &g.q})) {
     CGAL::Protect_FPU_rounding<true> upward;
     const auto [d, e] = crease_terms<Interval>(f, g, c);
     sd = d.inf() > 0 ? 1 : d.sup() < 0 ? -1 : 2;
@@ -505,14 +496,8 @@ FT DepthPlane::number(int k) const {
 }
 
 bool DepthPlane::operator==(const DepthPlane& o) const {
-  for (std::size_t k = 0; k < 3; ++k)
+  for (std::size_t k = 0; k < 3; ++k)   // (intervals apart: different planes)
     if (approx_[k].sup() < o.approx_[k].inf() || o.approx_[k].sup() < approx_[k].inf()) return false;
-  const bool points = [&] {
-    for (std::size_t k = 0; k < 3; ++k)
-      if (!approx_[k].is_point() || !o.approx_[k].is_point()) return false;
-    return true;
-  }();
-  if (points) return true;   // (equal points: the intervals met)
   return exact() == o.exact();
 }
 

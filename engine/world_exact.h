@@ -61,12 +61,9 @@ inline int orientation(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& 
 // orientation()'s, exact where it must be.
 class PlaneSide {
  public:
-  PlaneSide(const Vec3& o, const Vec3& a, const Vec3& b) : o_(o), a_(a), b_(b) {
-    const double ax = a.x - o.x, ay = a.y - o.y, az = a.z - o.z;
-    const double bx = b.x - o.x, by = b.y - o.y, bz = b.z - o.z;
-    n_ = {ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx};
-    const double A = std::max({std::abs(ax), std::abs(ay), std::abs(az)});
-    const double B = std::max({std::abs(bx), std::abs(by), std::abs(bz)});
+  PlaneSide(const Vec3& o, const Vec3& a, const Vec3& b) : o_(o), a_(a), b_(b), n_(normal_of<double>(o, a, b)) {
+    const double A = std::max({std::abs(a.x - o.x), std::abs(a.y - o.y), std::abs(a.z - o.z)});
+    const double B = std::max({std::abs(b.x - o.x), std::abs(b.y - o.y), std::abs(b.z - o.z)});
     ab_ = A * B;
     usable_ = A >= 0x1p-300 && A <= 0x1p300 && B >= 0x1p-300 && B <= 0x1p300;
   }
