@@ -719,21 +719,39 @@ Curve crossing_curve(const Facet& A, const Facet& B, int fa, int fb, const P2& p
   return intersection_curve(s, t, fa, fb, A.face, B.face, ends);
 }
 
+namespace {
+
 // Facets with an edge in common (by identity) meet only along it, or lie in one
-// plane: they never pierce each other. (The commonest pair on a mesh, told
-// without arithmetic.)
+// plane: they never pierce each other.
 bool share_an_edge(const Facet& A, const Facet& B) {
-  if (A.id.size() == 3 && B.id.size() == 3) {   // two corners of a triangle make an edge of it
-    int shared = 0;
-    for (const long p : A.id) shared += p >= 0 && (p == B.id[0] || p == B.id[1] || p == B.id[2]);
-    return shared >= 2;
-  }
   const std::size_t n = A.id.size();
   for (std::size_t k = 0; k < n; ++k) {
     const long p = A.id[k], q = A.id[(k + 1) % n];   // (an edge of A)
     if (p >= 0 && q >= 0 && has_edge(B, p, q)) return true;
   }
   return false;
+}
+
+}  // namespace
+
+bool neighbours_apart(const Facet& A, const Facet& B, const EmbeddedStars& stars) {
+  VertexId corner = -1;
+  int shared = 0;
+  if (A.id.size() == 3 && B.id.size() == 3) {   // (the commonest: two corners of a triangle make an edge of it)
+    for (const VertexId p : A.id)
+      if (p >= 0 && (p == B.id[0] || p == B.id[1] || p == B.id[2])) {
+        corner = p;
+        ++shared;
+      }
+    return shared >= 2 || (shared == 1 && stars.at(corner));
+  }
+  if (share_an_edge(A, B)) return true;
+  for (const VertexId p : A.id)
+    if (B.has_vertex(p)) {
+      corner = p;
+      ++shared;
+    }
+  return shared == 1 && stars.at(corner);
 }
 
 namespace {
@@ -839,8 +857,8 @@ struct Crossing {   // facets fa < fb cross along p-q
 
 // The crossings of the pairs of facets that cell (ix, iy) is the first to list
 // together, appended to `out`.
-void crossings_in_cell(const Grid& g, const ScreenScene& ss, const Listing& l, int ix, int iy,
-                       std::vector<Member>& members, std::vector<Crossing>& out, std::int64_t& tested) {
+void crossings_in_cell(const Grid& g, const ScreenScene& ss, const Listing& l, const EmbeddedStars& stars, int ix,
+                       int iy, std::vector<Member>& members, std::vector<Crossing>& out, std::int64_t& tested) {
   const Cell& cell = g.at(ix, iy);
   members.clear();
   auto add = [&](int fi) {
@@ -861,7 +879,7 @@ void crossings_in_cell(const Grid& g, const ScreenScene& ss, const Listing& l, i
       const int fa = std::min(m.fi, n.fi), fb = std::max(m.fi, n.fi);
       if (!first_common_cell(l, fa, fb, ix, iy)) continue;
       const Facet &A = ss.facets[fa], &B = ss.facets[fb];
-      if (share_an_edge(A, B)) continue;
+      if (neighbours_apart(A, B, stars)) continue;
       ++tested;
       P2 p, q;
       if (intersection_segment(A, B, ss.world, p, q)) out.push_back(Crossing{fa, fb, p, q});
@@ -876,13 +894,14 @@ void crossings_in_cell(const Grid& g, const ScreenScene& ss, const Listing& l, i
 // that lists both; the lines are appended in the order of their pairs.
 void add_intersection_lines(const Grid& g, ScreenScene& ss, int threads, Stats& stats) {
   const Listing l = listing_of(g, ss, threads);
+  const EmbeddedStars stars(ss, threads);
   std::vector<std::vector<Crossing>> by_row(static_cast<std::size_t>(g.Y.cells()));
   std::vector<std::int64_t> tested_by_row(by_row.size(), 0);
   parallel_for(g.Y.cells(), threads, [&](int iy) {
     std::vector<Member> members;
     std::vector<Crossing> found;   // (filled here, stored once: rows side by side share cache lines)
     std::int64_t tested = 0;
-    for (int ix = 0; ix < g.X.cells(); ++ix) crossings_in_cell(g, ss, l, ix, iy, members, found, tested);
+    for (int ix = 0; ix < g.X.cells(); ++ix) crossings_in_cell(g, ss, l, stars, ix, iy, members, found, tested);
     by_row[static_cast<std::size_t>(iy)] = std::move(found);
     tested_by_row[static_cast<std::size_t>(iy)] = tested;
   });
@@ -899,6 +918,7 @@ void add_intersection_lines(const Grid& g, ScreenScene& ss, int threads, Stats& 
   for (const Crossing& c : found) {
     ss.curves.push_back(crossing_curve(ss.facets[c.fa], ss.facets[c.fb], c.fa, c.fb, c.p, c.q, line_ends));
   }
+  stats.count("embedded_stars", stars.count());
   stats.count("facet_pairs_tested", tested);
   stats.count("intersection_lines", static_cast<std::int64_t>(found.size()));
 }

@@ -3,6 +3,7 @@
 #include <deque>
 #include <vector>
 
+#include "engine/embedded_stars.h"
 #include "engine/screen_scene.h"
 
 namespace vismap::engine {
@@ -77,12 +78,15 @@ Curve crossing_curve(const Facet& A, const Facet& B, int fa, int fb, const P2& p
 // segment gets that segment's exact coordinate) and whose exact value is made
 // on integers, without a gcd at every step.
 P2 crossing_point(const P2& a, const P2& b, const P2& c, const P2& d);
-// Facets with an edge in common (by identity): they never pierce each other.
-bool share_an_edge(const Facet& A, const Facet& B);
-// Facets that cannot pierce each other, told without arithmetic: their depth
-// ranges apart, or an edge in common. (The pair searches' first test.)
-inline bool cannot_pierce(const Facet& A, const Facet& B) {
-  return A.zhi < B.zlo || B.zhi < A.zlo || share_an_edge(A, B);
+// Neighbours on a mesh that cannot pierce each other, told by their corners
+// alone: an edge in common, or one corner in common whose star lies flat on
+// the screen (`stars`). (Most pairs the searches meet on a mesh.)
+bool neighbours_apart(const Facet& A, const Facet& B, const EmbeddedStars& stars);
+// Facets that cannot pierce each other, told with no arithmetic on their
+// points: their depth ranges apart, or neighbours apart by their corners.
+// (The pair searches' first test.)
+inline bool cannot_pierce(const Facet& A, const Facet& B, const EmbeddedStars& stars) {
+  return A.zhi < B.zlo || B.zhi < A.zlo || neighbours_apart(A, B, stars);
 }
 // sign(depth of C - depth of D) at point p of the common screen line of curves C
 // and D, parametrised along x (along y if the line is vertical).

@@ -174,10 +174,11 @@ void add_all_intersection_lines(ScreenScene& ss, const WorldFacets& wf, int thre
   std::vector<char> listed(ss.facets.size());
   for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) listed[fi] = FacetGrid::hides(ss.facets[fi]);
   const WorldGrid grid(wf, *ss.world, listed);
+  const EmbeddedStars stars(ss, threads);
   auto test = [&](int fa, int fb, std::vector<Crossing>& out) {   // (fa < fb)
     const Facet &A = ss.facets[static_cast<std::size_t>(fa)], &B = ss.facets[static_cast<std::size_t>(fb)];
     if (A.face == B.face || !WorldGrid::meet(grid.box(fa), grid.box(fb))) return;
-    if (!CGAL::do_overlap(A.box, B.box) || cannot_pierce(A, B)) return;
+    if (!CGAL::do_overlap(A.box, B.box) || cannot_pierce(A, B, stars)) return;
     P2 p, q;
     if (intersection_segment(A, B, ss.world, p, q)) out.push_back(Crossing{fa, fb, p, q});
   };

@@ -313,12 +313,13 @@ void add_piercing_lines(ScreenScene& ss, Stats& stats) {
   std::int64_t tested = 0, found = 0;
   std::vector<Curve> lines;
   std::deque<P3>& line_ends = ss.ends.emplace_back();
+  const EmbeddedStars stars(ss, 1);
   BoxGrid(boxes).pairs([&](int i, int j) {
     const int fa = occ[i], fb = occ[j];
     const Facet &A = ss.facets[fa], &B = ss.facets[fb];
     // (Franklin's test of a pair, franklin_grid.h: neighbours on a mesh are told
     // by their shared edge or corner, or on doubles in the world.)
-    if (A.face == B.face || cannot_pierce(A, B)) return;
+    if (A.face == B.face || cannot_pierce(A, B, stars)) return;
     ++tested;
     P2 p, q;
     if (!intersection_segment(A, B, ss.world, p, q)) return;
