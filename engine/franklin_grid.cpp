@@ -732,20 +732,26 @@ bool share_an_edge(const Facet& A, const Facet& B) {
   return false;
 }
 
+// neighbours_apart for two triangles, from their corners a and b (-1: made by
+// the near plane's cut). Two corners in common make an edge of both.
+bool triangles_apart(const VertexId* a, const VertexId* b, const EmbeddedStars& stars) {
+  VertexId corner = -1;
+  int shared = 0;
+  for (int k = 0; k < 3; ++k)
+    if (a[k] >= 0 && (a[k] == b[0] || a[k] == b[1] || a[k] == b[2])) {
+      corner = a[k];
+      ++shared;
+    }
+  return shared >= 2 || (shared == 1 && stars.at(corner));
+}
+
 }  // namespace
 
 bool neighbours_apart(const Facet& A, const Facet& B, const EmbeddedStars& stars) {
+  if (A.id.size() == 3 && B.id.size() == 3) return triangles_apart(A.id.data(), B.id.data(), stars);
+  if (share_an_edge(A, B)) return true;
   VertexId corner = -1;
   int shared = 0;
-  if (A.id.size() == 3 && B.id.size() == 3) {   // (the commonest: two corners of a triangle make an edge of it)
-    for (const VertexId p : A.id)
-      if (p >= 0 && (p == B.id[0] || p == B.id[1] || p == B.id[2])) {
-        corner = p;
-        ++shared;
-      }
-    return shared >= 2 || (shared == 1 && stars.at(corner));
-  }
-  if (share_an_edge(A, B)) return true;
   for (const VertexId p : A.id)
     if (B.has_vertex(p)) {
       corner = p;
@@ -843,11 +849,15 @@ bool first_common_cell(const Listing& l, int a, int b, int ix, int iy) {
   return true;
 }
 
-// A facet as the pair search reads it, copied next to the others of its cell.
+// A facet as the pair search reads it, copied next to the others of its cell;
+// a triangle's corners too (most pairs on a mesh are told apart by them, and
+// the facets themselves are then never read).
 struct Member {
   int fi, face;
   CGAL::Bbox_2 box;
   double zlo, zhi;
+  std::array<VertexId, 3> corner;   // a triangle's, else corner[0] = kNotTriangle
+  static constexpr VertexId kNotTriangle = -2;
 };
 
 struct Crossing {   // facets fa < fb cross along p-q
@@ -863,7 +873,9 @@ void crossings_in_cell(const Grid& g, const ScreenScene& ss, const Listing& l, c
   members.clear();
   auto add = [&](int fi) {
     const Facet& f = ss.facets[fi];
-    members.push_back(Member{fi, f.face, f.box, f.zlo, f.zhi});
+    Member m{fi, f.face, f.box, f.zlo, f.zhi, {Member::kNotTriangle, -1, -1}};
+    if (f.id.size() == 3) std::copy(f.id.begin(), f.id.end(), m.corner.begin());
+    members.push_back(m);
   };
   for (int fi : cell.facets) add(fi);
   if (cell.blocker >= 0) add(cell.blocker);
@@ -876,10 +888,12 @@ void crossings_in_cell(const Grid& g, const ScreenScene& ss, const Listing& l, c
     for (std::size_t j = i + 1; j < members.size() && members[j].zlo <= members[i].zhi; ++j) {
       const Member &m = members[i], &n = members[j];
       if (m.fi == n.fi || m.face == n.face || !CGAL::do_overlap(m.box, n.box)) continue;
+      const bool triangles = m.corner[0] != Member::kNotTriangle && n.corner[0] != Member::kNotTriangle;
+      if (triangles && triangles_apart(m.corner.data(), n.corner.data(), stars)) continue;
       const int fa = std::min(m.fi, n.fi), fb = std::max(m.fi, n.fi);
       if (!first_common_cell(l, fa, fb, ix, iy)) continue;
       const Facet &A = ss.facets[fa], &B = ss.facets[fb];
-      if (neighbours_apart(A, B, stars)) continue;
+      if (!triangles && neighbours_apart(A, B, stars)) continue;
       ++tested;
       P2 p, q;
       if (intersection_segment(A, B, ss.world, p, q)) out.push_back(Crossing{fa, fb, p, q});
