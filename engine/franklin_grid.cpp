@@ -9,6 +9,7 @@
 #include <type_traits>
 
 #include "engine/convex_inside.h"
+#include "engine/midpoint_probe.h"
 #include "engine/overlap_cuts.h"
 #include "engine/parallel.h"
 #include "engine/world_exact.h"
@@ -1356,112 +1357,12 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
 
 namespace {
 
-// The point m where a piece is decided, and its curve's direction, as exact
-// numbers and as intervals: the comparisons below run on the intervals and fall
-// back to rationals only when those cannot decide (no lazy trees are built).
-struct Probe {
-  const P2 *a, *b;            // the piece's ends: m is their midpoint
-  Interval ix, iy;            // m
-  const Curve* curve;         // end points s, t: direction t - s
-  const P3 *s, *t;
-  const std::vector<Vec3>* world;   // the input's vertices (the curve's end point ids index them)
-  const std::vector<Facet>* facets; // the screen scene's (the curve's sharers index them)
-  Interval idx, idy;
-  bool x_moves = true;        // t.x != s.x (else the curve is vertical)
-  mpq_class ex, ey, edx, edy; // exact values, filled on first need
-  bool have_exact = false, have_direction = false;
-  void at_midpoint(const P2& pa, const P2& pb) {   // (rounding upward: the caller's UpwardRounding)
-    a = &pa;
-    b = &pb;
-    ix = (approx_x(pa) + approx_x(pb)) / 2;
-    iy = (approx_y(pa) + approx_y(pb)) / 2;
-    have_exact = false;
-  }
-  void need_direction() {   // (the curve's: the same for every piece)
-    if (have_direction) return;
-    NearestRounding nearest;
-    edx = to_mpq(t->x) - to_mpq(s->x);
-    edy = to_mpq(t->y) - to_mpq(s->y);
-    have_direction = true;
-  }
-  void need_exact() {
-    if (have_exact) return;
-    need_direction();
-    NearestRounding nearest;
-    ex = (exact_x(*a) + exact_x(*b)) / 2;
-    ey = (exact_y(*a) + exact_y(*b)) / 2;
-    have_exact = true;
-  }
-};
-
-// The exact zeros that the curve's own geometry gives, before m's exact value
-// (a midpoint of crossings: the costliest number here) is built. On scenes of
-// aligned parts (walls of rooms, boxes side by side) curves run along other
-// facets' edges and in other facets' planes everywhere. Each is told on the
-// curve's end points (input vertices mostly, whose exact values are kept), and
-// not counted among the predicates: the count stays that of the questions asked.
-template <class Test>
-bool uncounted(Test&& test) {
-  const exact::FilterCounts before = exact::filter_counts;
-  NearestRounding nearest;
-  const bool yes = test();
-  exact::filter_counts = before;
-  return yes;
-}
-
-// The curve lies on the line p -> q (so m does).
-bool curve_on_line(const P3& p, const P3& q, const Probe& m) {
-  return uncounted([&] {
-    return CGAL::orientation(p.xy(), q.xy(), m.s->xy()) == CGAL::COLLINEAR &&
-           CGAL::orientation(p.xy(), q.xy(), m.t->xy()) == CGAL::COLLINEAR;
-  });
-}
-
-// Facet f is one of those whose edge the curve is (so the curve is in its plane).
-bool holds_curve(const Facet& f, const Probe& m) {
-  for (int s : m.curve->sharers)
-    if (s >= 0 && &(*m.facets)[static_cast<std::size_t>(s)] == &f) return true;
-  return false;
-}
-
-// The curve lies in facet f's plane (its depth is f's at m).
-bool curve_in_plane(const Facet& f, const Probe& m) {
-  return uncounted([&] {
-    return depth_above(*m.s, f, m.world, m.curve->vs) == CGAL::ZERO &&
-           depth_above(*m.t, f, m.world, m.curve->vt) == CGAL::ZERO;
-  });
-}
-
-// Orientation of (p, q, m): positive when m is left of p -> q.
-CGAL::Sign orientation(const P3& p, const P3& q, Probe& m) {
-  return filtered_sign(
-      [&] {
-        return (approx_of(q.x) - approx_of(p.x)) * (m.iy - approx_of(p.y)) -
-               (approx_of(q.y) - approx_of(p.y)) * (m.ix - approx_of(p.x));
-      },
-      [&]() -> mpq_class {
-        if (curve_on_line(p, q, m)) return 0;
-        m.need_exact();
-        return orient_sign(to_mpq(p.x), to_mpq(p.y), to_mpq(q.x), to_mpq(q.y), m.ex, m.ey);
-      });
-}
-
 // What one facet contributes at a point m of a curve: whether it covers the
 // points just left / right of m.
 struct Cover {
   int facet;
   bool left, right;
 };
-
-// sign((q - p) . (t - s)): a facet edge's direction against the curve's.
-CGAL::Sign edge_along(const P3& p, const P3& q, Probe& m) {
-  return filtered_sign(
-      [&] { return (approx_of(q.x) - approx_of(p.x)) * m.idx + (approx_of(q.y) - approx_of(p.y)) * m.idy; },
-      [&]() -> mpq_class {
-        m.need_direction();
-        return (to_mpq(q.x) - to_mpq(p.x)) * m.edx + (to_mpq(q.y) - to_mpq(p.y)) * m.edy;
-      });
-}
 
 // `own`: the facet's edge that holds the curve (m is on its line), or -1.
 bool cover_at(const Facet& f, Probe& probe, Cover& out, int own) {
@@ -1484,54 +1385,6 @@ bool cover_at(const Facet& f, Probe& probe, Cover& out, int own) {
   out.left = left;
   out.right = right;
   return true;
-}
-
-// sign(depth of f - depth of g) at m.
-CGAL::Sign depth_order(const Facet& f, const Facet& g, Probe& m) {
-  return filtered_sign(
-      [&] {
-        return (f.plane.approx(0) - g.plane.approx(0)) * m.ix + (f.plane.approx(1) - g.plane.approx(1)) * m.iy +
-               (f.plane.approx(2) - g.plane.approx(2));
-      },
-      [&]() -> mpq_class {
-        if (holds_curve(f, m) && holds_curve(g, m)) return 0;   // (both hold m, on their common edge)
-        if (uncounted([&] { return same_plane(f, g); })) return 0;
-        m.need_exact();
-        const auto F = f.plane.exact(), G = g.plane.exact();
-        return (F[0] - G[0]) * m.ex + (F[1] - G[1]) * m.ey + (F[2] - G[2]);
-      });
-}
-
-// sign(slope of f - slope of g), the slope being the rate at which depth grows
-// along the curve's left normal (-dy, dx).
-CGAL::Sign slope_order(const Facet& f, const Facet& g, Probe& m) {
-  return filtered_sign(
-      [&] { return (f.plane.approx(1) - g.plane.approx(1)) * m.idx - (f.plane.approx(0) - g.plane.approx(0)) * m.idy; },
-      [&]() -> mpq_class {
-        m.need_direction();
-        const auto F = f.plane.exact(), G = g.plane.exact();
-        return (F[1] - G[1]) * m.edx - (F[0] - G[0]) * m.edy;
-      });
-}
-
-// sign(depth of f at m - depth of the curve at m), the curve's depth
-// interpolated from its end points along x (or y, for a vertical curve).
-CGAL::Sign depth_against_curve(const Facet& f, Probe& m) {
-  return filtered_sign(
-      [&] {
-        const Interval lambda = m.x_moves ? (m.ix - approx_of(m.s->x)) / m.idx : (m.iy - approx_of(m.s->y)) / m.idy;
-        const Interval z = approx_of(m.s->z) + lambda * (approx_of(m.t->z) - approx_of(m.s->z));
-        return f.plane.approx(0) * m.ix + f.plane.approx(1) * m.iy + f.plane.approx(2) - z;
-      },
-      [&]() -> mpq_class {
-        if (curve_in_plane(f, m)) return 0;
-        m.need_exact();
-        const mpq_class lambda = m.x_moves ? mpq_class((m.ex - to_mpq(m.s->x)) / m.edx)
-                                           : mpq_class((m.ey - to_mpq(m.s->y)) / m.edy);
-        const mpq_class z = to_mpq(m.s->z) + lambda * (to_mpq(m.t->z) - to_mpq(m.s->z));
-        const auto F = f.plane.exact();
-        return F[0] * m.ex + F[1] * m.ey + F[2] - z;
-      });
 }
 
 // Order just beside m on one side: depth, then how fast depth grows that way, then index.
@@ -1593,18 +1446,7 @@ void classify_curve(const Grid& g, const ScreenScene& ss, int ci, std::vector<P2
   exact::filter_counts = before_sort;
   pts.insert(pts.begin(), s);
   pts.push_back(t);
-  Probe probe;
-  probe.curve = &cv;
-  probe.s = cv.s;
-  probe.t = cv.t;
-  probe.world = ss.world;
-  probe.facets = &ss.facets;
-  {
-    CGAL::Protect_FPU_rounding<true> upward;
-    probe.idx = approx_of(cv.t->x) - approx_of(cv.s->x);
-    probe.idy = approx_of(cv.t->y) - approx_of(cv.s->y);
-  }
-  probe.x_moves = probe.idx.inf() > 0 || probe.idx.sup() < 0 || CGAL::compare_x(s, t) != CGAL::EQUAL;
+  Probe probe = probe_of(ss, cv);
   UpwardRounding upward;   // the loop calls only our own filtered predicates
   for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
     ++res.pieces;

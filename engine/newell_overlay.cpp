@@ -11,6 +11,7 @@
 #include <unordered_map>
 
 #include "engine/franklin_grid.h"
+#include "engine/midpoint_probe.h"
 #include "engine/newell_geometry.h"
 #include "engine/overlap_cuts.h"
 
@@ -19,15 +20,13 @@ namespace {
 
 using namespace newell;
 
-// A box around a (constructed) point. A crossing of two nearly parallel lines
-// can carry an unbounded interval until its exact value is asked for: then it is.
-CGAL::Bbox_2 box_of_point(const P2& p) {
-  auto b = CGAL::approx(p).bbox();
-  if (!std::isfinite(b.xmin()) || !std::isfinite(b.xmax()) || !std::isfinite(b.ymin()) || !std::isfinite(b.ymax())) {
+// A (constructed) point's interval made bounded: a crossing of two nearly
+// parallel lines can carry an unbounded one until its exact value is asked
+// for, which narrows it.
+void bound(const P2& p) {
+  const auto b = CGAL::approx(p).bbox();
+  if (!std::isfinite(b.xmin()) || !std::isfinite(b.xmax()) || !std::isfinite(b.ymin()) || !std::isfinite(b.ymax()))
     CGAL::exact(p);
-    b = CGAL::approx(p).bbox();
-  }
-  return b;
 }
 
 // Items by bounding box in a uniform grid of buckets. An item is listed in every
@@ -210,9 +209,8 @@ struct CurveLine {
 // an infinitesimal e > 0, d = t - s the curve's direction and n its left normal.
 // The e^2 term settles a fragment side through m across the curve (a split
 // line, which is no curve).
-bool covers(const Fragment& X, int frag, const P2& m, CurveLine& line, bool& left, bool& right) {
+bool covers(const Fragment& X, int frag, Probe& m, CurveLine& line, bool& left, bool& right) {
   left = right = true;
-  const auto mi = CGAL::approx(m);
   const std::size_t n = X.v.size();
   for (std::size_t k = 0; k < n; ++k) {
     const P3 &p = X.v[k], &q = X.v[(k + 1) % n];
@@ -220,12 +218,12 @@ bool covers(const Fragment& X, int frag, const P2& m, CurveLine& line, bool& lef
     bool known = false;
     {
       CGAL::Protect_FPU_rounding<true> upward;
-      const Interval v = (q.x.approx() - p.x.approx()) * (mi.y() - p.y.approx()) -
-                         (q.y.approx() - p.y.approx()) * (mi.x() - p.x.approx());
+      const Interval v = (q.x.approx() - p.x.approx()) * (m.iy - p.y.approx()) -
+                         (q.y.approx() - p.y.approx()) * (m.ix - p.x.approx());
       if (v.inf() > 0) { o = CGAL::POSITIVE; known = true; }
       else if (v.sup() < 0) { o = CGAL::NEGATIVE; known = true; }
     }
-    if (!known && !line.side_on_line(X, frag, k, p, q)) o = CGAL::orientation(p.xy(), q.xy(), m);
+    if (!known && !line.side_on_line(X, frag, k, p, q)) o = orientation(p, q, m);
     if (o == CGAL::POSITIVE) continue;
     if (o == CGAL::NEGATIVE) return left = right = false;
     // m on this side's line. Its inward normal is (q - p) turned left: against n
@@ -247,10 +245,10 @@ struct Cover {
 
 // Fragment T, covering both sides of m, hides the curve there by the spec's rule
 // on its own: another face, and nearer at m (or as near, with a lower index).
-bool in_front(const ScreenScene& ss, const Curve& cv, const Fragment& T, const P2& m) {
+bool in_front(const ScreenScene& ss, const Curve& cv, const Fragment& T, Probe& m) {
   if (std::binary_search(cv.faces.begin(), cv.faces.end(), T.face)) return false;
-  const auto cmp = CGAL::compare(ss.facets[T.facet].depth_at(m), depth_on(cv, m));
-  return cmp == CGAL::SMALLER || (cmp == CGAL::EQUAL && T.face < cv.order_face);
+  const CGAL::Sign order = depth_against_curve(ss.facets[T.facet], m);
+  return order == CGAL::NEGATIVE || (order == CGAL::ZERO && T.face < cv.order_face);
 }
 
 // Whether a fragment of a face that is not one of cv's covers both sides of m and
@@ -260,7 +258,7 @@ bool in_front(const ScreenScene& ss, const Curve& cv, const Fragment& T, const P
 // exact depth at m checks it, and settles equal depth by the spec's face-index
 // rule). Where the curve has no fragment of its own (an edge of edge-on faces
 // only), or for a fragment over the other side, the depths at m decide.
-bool painted_over(const ScreenScene& ss, const std::vector<Fragment>& order, const Curve& cv, const P2& m,
+bool painted_over(const ScreenScene& ss, const std::vector<Fragment>& order, const Curve& cv, Probe& m,
                   const std::vector<Cover>& cov) {
   int own = -1;
   for (int i = 0; i < static_cast<int>(cov.size()); ++i) {
@@ -269,8 +267,6 @@ bool painted_over(const ScreenScene& ss, const std::vector<Fragment>& order, con
     if (own < 0 || cov[i].frag > cov[own].frag) own = i;
   }
   const bool own_left = own >= 0 && cov[own].left;
-  FT zm;
-  bool have_zm = false;
   for (int i = 0; i < static_cast<int>(cov.size()); ++i) {
     const int g = cov[i].face;
     if (std::binary_search(cv.faces.begin(), cv.faces.end(), g)) continue;
@@ -280,23 +276,22 @@ bool painted_over(const ScreenScene& ss, const std::vector<Fragment>& order, con
     const Facet& fi = ss.facets[order[cov[i].frag].facet];
     for (const Cover& c : cov)
       if (!(l && r) && c.face == g && (c.left != l || c.right != r) &&
-          CGAL::compare(ss.facets[order[c.frag].facet].depth_at(m), fi.depth_at(m)) == CGAL::EQUAL) {
+          depth_order(ss.facets[order[c.frag].facet], fi, m) == CGAL::ZERO) {
         l |= c.left;
         r |= c.right;
       }
     if (!(l && r)) continue;
-    if (!have_zm) { zm = depth_on(cv, m); have_zm = true; }
-    const auto cmp = CGAL::compare(ss.facets[order[cov[i].frag].facet].depth_at(m), zm);
-    if (cmp == CGAL::EQUAL) {
+    const CGAL::Sign cmp = depth_against_curve(fi, m);
+    if (cmp == CGAL::ZERO) {
       if (g < cv.order_face) return true;
       continue;
     }
     if (own >= 0 && (own_left ? cov[i].left : cov[i].right)) {
       const bool after = cov[i].frag > cov[own].frag;
-      if (after != (cmp == CGAL::SMALLER))
+      if (after != (cmp == CGAL::NEGATIVE))
         throw std::logic_error("newell: the drawing order contradicts the depths (engine bug)");
       if (after) return true;
-    } else if (cmp == CGAL::SMALLER) {
+    } else if (cmp == CGAL::NEGATIVE) {
       return true;
     }
   }
@@ -424,6 +419,7 @@ std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Frag
     const Curve& cv = ss.curves[ci];
     const P2 s = cv.s->xy(), t = cv.t->xy();
     CurveLine line{cv, {}};
+    Probe m = probe_of(ss, cv);
     // Sort the cuts along the curve (by its dominant coordinate); a point cut
     // twice is one cut.
     std::vector<P2>& pts = cuts[ci];
@@ -441,13 +437,19 @@ std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Frag
     pts.push_back(t);
     for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
       ++pieces;
-      const P2 m = CGAL::midpoint(pts[k], pts[k + 1]);
+      bound(pts[k]);
+      bound(pts[k + 1]);
+      {
+        CGAL::Protect_FPU_rounding<true> upward;
+        m.at_midpoint(pts[k], pts[k + 1]);
+      }
       // The fragments near m, last drawn first: the first covering each side is
       // what is painted there. Usually one fragment covers both sides and lies
       // in front of the curve, which settles the piece (hidden, one face on both
       // sides); otherwise every fragment around m is looked at.
       cand.clear();
-      grid.overlapping(box_of_point(m), [&](int i) { cand.push_back(i); });
+      const CGAL::Bbox_2 mbox(m.ix.inf(), m.iy.inf(), m.ix.sup(), m.iy.sup());
+      grid.overlapping(mbox, [&](int i) { cand.push_back(i); });
       std::sort(cand.begin(), cand.end(), std::greater<int>());
       cov.clear();
       int top_left = -1, top_right = -1;

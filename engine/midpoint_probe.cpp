@@ -1,0 +1,133 @@
+#include "engine/midpoint_probe.h"
+
+#include "engine/franklin_grid.h"
+
+namespace vismap::engine {
+VISMAP_KERNEL_BEGIN
+
+namespace {
+
+// The exact zeros that the curve's own geometry gives, before m's exact value
+// (a midpoint of crossings: the costliest number here) is built. On scenes of
+// aligned parts (walls of rooms, boxes side by side) curves run along other
+// facets' edges and in other facets' planes everywhere. Each is told on the
+// curve's end points (input vertices mostly, whose exact values are kept), and
+// not counted among the predicates: the count stays that of the questions asked.
+template <class Test>
+bool uncounted(Test&& test) {
+  const exact::FilterCounts before = exact::filter_counts;
+  NearestRounding nearest;
+  const bool yes = test();
+  exact::filter_counts = before;
+  return yes;
+}
+
+// The curve lies on the line p -> q (so m does).
+bool curve_on_line(const P3& p, const P3& q, const Probe& m) {
+  return uncounted([&] {
+    return CGAL::orientation(p.xy(), q.xy(), m.s->xy()) == CGAL::COLLINEAR &&
+           CGAL::orientation(p.xy(), q.xy(), m.t->xy()) == CGAL::COLLINEAR;
+  });
+}
+
+// Facet f is one of those whose edge the curve is (so the curve is in its plane).
+bool holds_curve(const Facet& f, const Probe& m) {
+  for (int s : m.curve->sharers)
+    if (s >= 0 && &(*m.facets)[static_cast<std::size_t>(s)] == &f) return true;
+  return false;
+}
+
+// The curve lies in facet f's plane (its depth is f's at m).
+bool curve_in_plane(const Facet& f, const Probe& m) {
+  return uncounted([&] {
+    return depth_above(*m.s, f, m.world, m.curve->vs) == CGAL::ZERO &&
+           depth_above(*m.t, f, m.world, m.curve->vt) == CGAL::ZERO;
+  });
+}
+
+}  // namespace
+
+Probe probe_of(const ScreenScene& ss, const Curve& cv) {
+  Probe probe;
+  probe.curve = &cv;
+  probe.s = cv.s;
+  probe.t = cv.t;
+  probe.world = ss.world;
+  probe.facets = &ss.facets;
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    probe.idx = approx_of(cv.t->x) - approx_of(cv.s->x);
+    probe.idy = approx_of(cv.t->y) - approx_of(cv.s->y);
+  }
+  probe.x_moves =
+      probe.idx.inf() > 0 || probe.idx.sup() < 0 || CGAL::compare_x(cv.s->xy(), cv.t->xy()) != CGAL::EQUAL;
+  return probe;
+}
+
+CGAL::Sign orientation(const P3& p, const P3& q, Probe& m) {
+  return filtered_sign(
+      [&] {
+        return (approx_of(q.x) - approx_of(p.x)) * (m.iy - approx_of(p.y)) -
+               (approx_of(q.y) - approx_of(p.y)) * (m.ix - approx_of(p.x));
+      },
+      [&]() -> mpq_class {
+        if (curve_on_line(p, q, m)) return 0;
+        m.need_exact();
+        return orient_sign(to_mpq(p.x), to_mpq(p.y), to_mpq(q.x), to_mpq(q.y), m.ex, m.ey);
+      });
+}
+
+CGAL::Sign edge_along(const P3& p, const P3& q, Probe& m) {
+  return filtered_sign(
+      [&] { return (approx_of(q.x) - approx_of(p.x)) * m.idx + (approx_of(q.y) - approx_of(p.y)) * m.idy; },
+      [&]() -> mpq_class {
+        m.need_direction();
+        return (to_mpq(q.x) - to_mpq(p.x)) * m.edx + (to_mpq(q.y) - to_mpq(p.y)) * m.edy;
+      });
+}
+
+CGAL::Sign depth_order(const Facet& f, const Facet& g, Probe& m) {
+  return filtered_sign(
+      [&] {
+        return (f.plane.approx(0) - g.plane.approx(0)) * m.ix + (f.plane.approx(1) - g.plane.approx(1)) * m.iy +
+               (f.plane.approx(2) - g.plane.approx(2));
+      },
+      [&]() -> mpq_class {
+        if (holds_curve(f, m) && holds_curve(g, m)) return 0;   // (both hold m, on their common edge)
+        if (uncounted([&] { return f.plane == g.plane; })) return 0;
+        m.need_exact();
+        const auto F = f.plane.exact(), G = g.plane.exact();
+        return (F[0] - G[0]) * m.ex + (F[1] - G[1]) * m.ey + (F[2] - G[2]);
+      });
+}
+
+CGAL::Sign slope_order(const Facet& f, const Facet& g, Probe& m) {
+  return filtered_sign(
+      [&] { return (f.plane.approx(1) - g.plane.approx(1)) * m.idx - (f.plane.approx(0) - g.plane.approx(0)) * m.idy; },
+      [&]() -> mpq_class {
+        m.need_direction();
+        const auto F = f.plane.exact(), G = g.plane.exact();
+        return (F[1] - G[1]) * m.edx - (F[0] - G[0]) * m.edy;
+      });
+}
+
+CGAL::Sign depth_against_curve(const Facet& f, Probe& m) {
+  return filtered_sign(
+      [&] {
+        const Interval lambda = m.x_moves ? (m.ix - approx_of(m.s->x)) / m.idx : (m.iy - approx_of(m.s->y)) / m.idy;
+        const Interval z = approx_of(m.s->z) + lambda * (approx_of(m.t->z) - approx_of(m.s->z));
+        return f.plane.approx(0) * m.ix + f.plane.approx(1) * m.iy + f.plane.approx(2) - z;
+      },
+      [&]() -> mpq_class {
+        if (curve_in_plane(f, m)) return 0;
+        m.need_exact();
+        const mpq_class lambda = m.x_moves ? mpq_class((m.ex - to_mpq(m.s->x)) / m.edx)
+                                           : mpq_class((m.ey - to_mpq(m.s->y)) / m.edy);
+        const mpq_class z = to_mpq(m.s->z) + lambda * (to_mpq(m.t->z) - to_mpq(m.s->z));
+        const auto F = f.plane.exact();
+        return F[0] * m.ex + F[1] * m.ey + F[2] - z;
+      });
+}
+
+VISMAP_KERNEL_END
+}  // namespace vismap::engine

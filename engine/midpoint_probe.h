@@ -1,0 +1,68 @@
+// The point where a piece of a curve is decided (its midpoint), and the
+// predicates both engines ask there, as filtered signs: intervals first, exact
+// rationals where those cannot tell, and no lazy number built. Internal to the
+// engine (CGAL types).
+#pragma once
+#include <vector>
+
+#include "engine/screen_scene.h"
+
+namespace vismap::engine {
+VISMAP_KERNEL_BEGIN
+
+// The point m where a piece is decided, and its curve's direction, as exact
+// numbers and as intervals: the comparisons below run on the intervals and fall
+// back to rationals only when those cannot decide (no lazy trees are built).
+struct Probe {
+  const P2 *a, *b;            // the piece's ends: m is their midpoint
+  Interval ix, iy;            // m
+  const Curve* curve;         // end points s, t: direction t - s
+  const P3 *s, *t;
+  const std::vector<Vec3>* world;   // the input's vertices (the curve's end point ids index them)
+  const std::vector<Facet>* facets; // the screen scene's (the curve's sharers index them)
+  Interval idx, idy;
+  bool x_moves = true;        // t.x != s.x (else the curve is vertical)
+  mpq_class ex, ey, edx, edy; // exact values, filled on first need
+  bool have_exact = false, have_direction = false;
+  void at_midpoint(const P2& pa, const P2& pb) {   // (rounding upward: the caller's UpwardRounding)
+    a = &pa;
+    b = &pb;
+    ix = (approx_x(pa) + approx_x(pb)) / 2;
+    iy = (approx_y(pa) + approx_y(pb)) / 2;
+    have_exact = false;
+  }
+  void need_direction() {   // (the curve's: the same for every piece)
+    if (have_direction) return;
+    NearestRounding nearest;
+    edx = to_mpq(t->x) - to_mpq(s->x);
+    edy = to_mpq(t->y) - to_mpq(s->y);
+    have_direction = true;
+  }
+  void need_exact() {
+    if (have_exact) return;
+    need_direction();
+    NearestRounding nearest;
+    ex = (exact_x(*a) + exact_x(*b)) / 2;
+    ey = (exact_y(*a) + exact_y(*b)) / 2;
+    have_exact = true;
+  }
+};
+
+// The probe of curve cv of ss (its direction set; at_midpoint sets the point).
+Probe probe_of(const ScreenScene& ss, const Curve& cv);
+
+// Orientation of (p, q, m): positive when m is left of p -> q.
+CGAL::Sign orientation(const P3& p, const P3& q, Probe& m);
+// sign((q - p) . (t - s)): a facet edge's direction against the curve's.
+CGAL::Sign edge_along(const P3& p, const P3& q, Probe& m);
+// sign(depth of f - depth of g) at m.
+CGAL::Sign depth_order(const Facet& f, const Facet& g, Probe& m);
+// sign(slope of f - slope of g), the slope being the rate at which depth grows
+// along the curve's left normal (-dy, dx).
+CGAL::Sign slope_order(const Facet& f, const Facet& g, Probe& m);
+// sign(depth of f at m - depth of the curve at m), the curve's depth
+// interpolated from its end points along x (or y, for a vertical curve).
+CGAL::Sign depth_against_curve(const Facet& f, Probe& m);
+
+VISMAP_KERNEL_END
+}  // namespace vismap::engine
