@@ -1127,14 +1127,19 @@ struct CrossingOf {
     const mpz_class wx = X[4] - X[0], wy = X[5] - X[1];
     const mpz_class den = ux * vy - uy * vx, num = wx * vy - wy * vx;
     const mpz_class scale = den * L;
-    auto coordinate = [&](const mpz_class& x0, const mpz_class& u) {
+    // On a segment parallel to an axis (a vertical edge seen with the up axis
+    // upright: common), that coordinate is the segment's own, already canonical
+    // (no product, no gcd).
+    auto coordinate = [&](int k, const mpz_class& x0, const mpz_class& u) {
+      if (X[4 + k] == X[6 + k]) return *q[4 + k];
+      if (X[k] == X[2 + k]) return *q[k];
       mpq_class r;
       r.get_num() = x0 * den + num * u;
       r.get_den() = scale;
       r.canonicalize();
       return r;
     };
-    return result_type(coordinate(X[0], ux), coordinate(X[1], uy));
+    return result_type(coordinate(0, X[0], ux), coordinate(1, X[1], uy));
   }
   // Two enclosures of one number: their common part.
   static Interval meet(const Interval& p, const Interval& q) {
