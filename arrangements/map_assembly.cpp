@@ -81,13 +81,24 @@ std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph
     const int i = a.at / 2, j = b.at / 2;
     return upright[i] && pieces[i].line == pieces[j].line;
   };
+  // A cheap number equal to end e's x, where the engine knows one (MapPiece::xa), or null.
+  auto known_x = [&](const End& e) { return e.at % 2 == 0 ? pieces[e.at / 2].xa : pieces[e.at / 2].xb; };
   auto compare = [&](const End& a, const End& b) {
     if (a.x.sup() < b.x.inf()) return CGAL::SMALLER;
     if (b.x.sup() < a.x.inf()) return CGAL::LARGER;
     const P2 &pa = point(a), &pb = point(b);
     if (exact::same_rep(pa, pb)) return CGAL::EQUAL;
     const Interval &ay = approx_point(pa).y(), &by = approx_point(pb).y();
-    if ((a.x.is_point() && b.x.is_point()) || on_one_upright_line(a, b)) {   // x equal: y's intervals may tell
+    bool x_equal = (a.x.is_point() && b.x.is_point()) || on_one_upright_line(a, b);
+    if (!x_equal) {   // x known as cheap numbers: those compare instead of the points
+      const FT *xa = known_x(a), *xb = known_x(b);
+      if (xa && xb) {
+        const CGAL::Comparison_result c = CGAL::identical(*xa, *xb) ? CGAL::EQUAL : CGAL::compare(*xa, *xb);
+        if (c != CGAL::EQUAL) return c;
+        x_equal = true;
+      }
+    }
+    if (x_equal) {   // x equal: y's intervals may tell
       if (ay.sup() < by.inf()) return CGAL::SMALLER;
       if (by.sup() < ay.inf()) return CGAL::LARGER;
     }

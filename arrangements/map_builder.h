@@ -27,6 +27,12 @@ struct MapPiece {
   int order_face = 0;                // lowest face index, for ties in depth
   int line = -1;                     // the engine's curve it lies on (-1: not known): pieces
                                      // of one curve are collinear, known without arithmetic
+  // A number equal to a's (b's) x whose exact value is cheap, where the engine
+  // knows one: a vertex image's x, or on an upright screen line (a vertical edge
+  // seen with the up axis upright: common) that line's. The end points' x then
+  // compare without the points' own exact values (crossings, mostly: the
+  // costliest numbers). Null: not known.
+  const exact::FT *xa = nullptr, *xb = nullptr;
 };
 
 // Builds the planar arrangement of the pieces (CGAL Arrangement_2, overlaps

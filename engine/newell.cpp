@@ -31,11 +31,11 @@ void map_from_order(const Scene& scene, const View& view, const Options& opt, Sc
   // it may change, each piece judged by what is painted beside and over it.
   add_piercing_lines(ss, st);
   drop_painted_over(ss, order, st);
-  std::vector<std::vector<P2>> cuts = cut_at_crossings(ss, st);
+  CutPoints cuts = cut_at_crossings(ss, st);
   st.time("intersections", clock.lap());
   const std::vector<FacesList> faces = faces_lists(ss.curves);   // (the map points at these)
   std::vector<MapPiece> pieces = paint_pieces(ss, order, cuts, faces, st);
-  std::vector<std::vector<P2>>().swap(cuts);   // freed here, and counted here
+  cuts = CutPoints();   // freed here, and counted here
   st.time("overlay", clock.lap());
 
   // The plane graph of the kept pieces, its regions labelled: assembled without

@@ -112,11 +112,15 @@ class BoxGrid {
 
 struct Cutter {
   const ScreenScene& ss;
-  std::vector<std::vector<P2>>& cuts;
+  CutPoints& cuts;
   std::vector<std::pair<int, int>> overlaps{};   // collinear curves sharing more than a point
   std::int64_t pairs = 0, crossings = 0;
 
-  void cut(int c, const P2& p) { cuts[c].push_back(p); }
+  // (x: a number equal to p's x whose exact value is cheap, where known.)
+  void cut(int c, const P2& p, const FT* x = nullptr) {
+    cuts.at[c].push_back(p);
+    if (x) cuts.known_x.emplace_back(p.id(), x);
+  }
 
   // p lies on C's line strictly between its end points.
   static bool inside(const Curve& C, const P2& p) {
@@ -133,13 +137,13 @@ struct Cutter {
       // From the common point o they go to c and d: only if they leave o in the
       // same direction does one continue past the other's end. Their depths agree
       // at o and are affine along the common part, so they cannot cross in it.
-      const bool at_cs = same(C.vs, D.vs) || same(C.vs, D.vt);
+      const bool at_cs = same(C.vs, D.vs) || same(C.vs, D.vt), at_ds = same(C.vs, D.vs) || same(C.vt, D.vs);
       const P2 o = at_cs ? c0 : c1, c = at_cs ? c1 : c0;
-      const P2 d = (same(C.vs, D.vs) || same(C.vt, D.vs)) ? d1 : d0;
+      const P2 d = at_ds ? d1 : d0;
       if (CGAL::orientation(o, c, d) != CGAL::COLLINEAR || !CGAL::is_positive((c - o) * (d - o))) return;
       overlaps.emplace_back(ci, di);
-      if (inside(C, d)) cut(ci, d);
-      else if (inside(D, c)) cut(di, c);
+      if (inside(C, d)) cut(ci, d, at_ds ? &D.t->x : &D.s->x);
+      else if (inside(D, c)) cut(di, c, at_cs ? &C.t->x : &C.s->x);
       return;
     }
     const auto o1 = CGAL::orientation(c0, c1, d0), o2 = CGAL::orientation(c0, c1, d1);
@@ -150,16 +154,18 @@ struct Cutter {
     if (o1 != CGAL::COLLINEAR && o2 != CGAL::COLLINEAR && o3 != CGAL::COLLINEAR && o4 != CGAL::COLLINEAR) {
       // A proper crossing (made as Franklin's engine makes one: franklin_grid.h).
       const P2 x = crossing_point(c0, c1, d0, d1);
-      cut(ci, x);
+      // On an upright curve, its x.
+      const FT* line_x = cuts.upright[ci] ? &C.s->x : cuts.upright[di] ? &D.s->x : nullptr;
+      cut(ci, x, line_x);
       cut(di, x);
       ++crossings;
       return;
     }
     // One ends on the other.
-    if (o1 == CGAL::COLLINEAR && inside(C, d0)) cut(ci, d0);
-    if (o2 == CGAL::COLLINEAR && inside(C, d1)) cut(ci, d1);
-    if (o3 == CGAL::COLLINEAR && inside(D, c0)) cut(di, c0);
-    if (o4 == CGAL::COLLINEAR && inside(D, c1)) cut(di, c1);
+    if (o1 == CGAL::COLLINEAR && inside(C, d0)) cut(ci, d0, &D.s->x);
+    if (o2 == CGAL::COLLINEAR && inside(C, d1)) cut(ci, d1, &D.t->x);
+    if (o3 == CGAL::COLLINEAR && inside(D, c0)) cut(di, c0, &C.s->x);
+    if (o4 == CGAL::COLLINEAR && inside(D, c1)) cut(di, c1, &C.t->x);
   }
 
   // On one line: each is cut at the other's end points inside it and, where both
@@ -171,8 +177,10 @@ struct Cutter {
     const P2 lo = std::max(clo, dlo), hi = std::min(chi, dhi);   // lexicographic order is the order along the line
     if (!(lo < hi)) return;                                       // they meet in a point at most
     overlaps.emplace_back(ci, di);
-    for (const P2& p : {d0, d1}) if (inside(C, p)) cut(ci, p);
-    for (const P2& p : {c0, c1}) if (inside(D, p)) cut(di, p);
+    if (inside(C, d0)) cut(ci, d0, &D.s->x);
+    if (inside(C, d1)) cut(ci, d1, &D.t->x);
+    if (inside(D, c0)) cut(di, c0, &C.s->x);
+    if (inside(D, c1)) cut(di, c1, &C.t->x);
     const FT flo = depth_on(C, lo) - depth_on(D, lo), fhi = depth_on(C, hi) - depth_on(D, hi);
     if (CGAL::sign(flo) * CGAL::sign(fhi) < 0) {
       const P2 x = lo + (flo / (flo - fhi)) * (hi - lo);
@@ -361,8 +369,21 @@ void drop_painted_over(ScreenScene& ss, const std::vector<Fragment>& order, Stat
   stats.count("curves_painted_over", static_cast<std::int64_t>(before - ss.curves.size()));
 }
 
-std::vector<std::vector<P2>> cut_at_crossings(const ScreenScene& ss, Stats& stats) {
-  std::vector<std::vector<P2>> cuts(ss.curves.size());
+const FT* CutPoints::x_of(const P2& p) const {
+  const auto it = std::lower_bound(known_x.begin(), known_x.end(), p.id(),
+                                   [](const auto& entry, CGAL::Handle::Id_type id) { return entry.first < id; });
+  return it != known_x.end() && it->first == p.id() ? it->second : nullptr;
+}
+
+CutPoints cut_at_crossings(const ScreenScene& ss, Stats& stats) {
+  CutPoints cuts;
+  cuts.at.resize(ss.curves.size());
+  cuts.upright.resize(ss.curves.size());
+  for (std::size_t ci = 0; ci < ss.curves.size(); ++ci) {
+    const Curve& c = ss.curves[ci];
+    const Interval sx = approx_of(c.s->x), tx = approx_of(c.t->x);
+    cuts.upright[ci] = !(sx.sup() < tx.inf() || tx.sup() < sx.inf()) && CGAL::compare(c.s->x, c.t->x) == CGAL::EQUAL;
+  }
   std::vector<CGAL::Bbox_2> boxes;
   boxes.reserve(ss.curves.size());
   for (const Curve& c : ss.curves) boxes.push_back(c.box);
@@ -392,21 +413,21 @@ std::vector<std::vector<P2>> cut_at_crossings(const ScreenScene& ss, Stats& stat
       const int turn = G.facing == Facing::Front ? 1 : -1;
       for (std::size_t k = 0; k < G.v.size(); ++k)
         if (CGAL::orientation(G.v[k].xy(), G.v[(k + 1) % G.v.size()].xy(), x) * turn <= 0) return;
-      cuts[ci].push_back(x);
+      cuts.at[ci].push_back(x);
       ++piercings;
     });
   }
   stats.count("piercings", piercings);
   // Last, when every curve has its own cuts: collinear curves that overlap
   // take each other's, piercings and depth crossings with a third included.
-  share_overlap_cuts(ss.curves, cutter.overlaps, [&](int c) { return &cuts[c]; },
-                     [&](int c, auto first, auto last) { cuts[c].insert(cuts[c].end(), first, last); });
+  share_overlap_cuts(ss.curves, cutter.overlaps, [&](int c) { return &cuts.at[c]; },
+                     [&](int c, auto first, auto last) { cuts.at[c].insert(cuts.at[c].end(), first, last); });
+  std::sort(cuts.known_x.begin(), cuts.known_x.end());
   return cuts;
 }
 
-std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Fragment>& order,
-                                   std::vector<std::vector<P2>>& cuts, const std::vector<FacesList>& faces,
-                                   Stats& stats) {
+std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Fragment>& order, CutPoints& cuts,
+                                   const std::vector<FacesList>& faces, Stats& stats) {
   std::vector<CGAL::Bbox_2> boxes;
   boxes.reserve(order.size());
   for (const Fragment& f : order) boxes.push_back(f.box);
@@ -422,7 +443,7 @@ std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Frag
     Probe m = probe_of(ss, cv);
     // Sort the cuts along the curve (by its dominant coordinate); a point cut
     // twice is one cut.
-    std::vector<P2>& pts = cuts[ci];
+    std::vector<P2>& pts = cuts.at[ci];
     const bool use_x = CGAL::compare(CGAL::abs(cv.t->x - cv.s->x), CGAL::abs(cv.t->y - cv.s->y)) != CGAL::SMALLER;
     const auto forward = use_x ? CGAL::compare_x(s, t) : CGAL::compare_y(s, t);
     auto along = [&](const P2& a, const P2& b) {   // (a point cut twice is often one number: equal by identity)
@@ -495,6 +516,12 @@ std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Frag
       mp.s = cv.s;
       mp.t = cv.t;
       mp.line = ci;
+      if (cuts.upright[ci]) {
+        mp.xa = mp.xb = &cv.s->x;
+      } else {
+        mp.xa = k == 0 ? &cv.s->x : cuts.x_of(pts[k]);
+        mp.xb = k + 2 == pts.size() ? &cv.t->x : cuts.x_of(pts[k + 1]);
+      }
       out.push_back(std::move(mp));
     }
   }

@@ -32,8 +32,18 @@ void drop_painted_over(ScreenScene& ss, const std::vector<Fragment>& order, Stat
 // facet (no intersection line ends there); and each of these on every curve
 // that overlaps the cut one on its screen line (share_overlap_cuts), so that the
 // pieces of any two curves meet only at their end points. Unsorted, possibly
-// repeated.
-std::vector<std::vector<P2>> cut_at_crossings(const ScreenScene& ss, Stats& stats);
+// repeated. With them, which curves are upright on the screen (their ends' x
+// exactly equal), and for cut points whose x is known as a number with a cheap
+// exact value (MapPiece::xa: a crossing with an upright curve, that line's x;
+// another curve's end point, its own), that number, by the point's
+// representation.
+struct CutPoints {
+  std::vector<std::vector<P2>> at;   // per curve
+  std::vector<char> upright;         // per curve
+  std::vector<std::pair<CGAL::Handle::Id_type, const FT*>> known_x;   // sorted
+  const FT* x_of(const P2& p) const;   // (null: not known)
+};
+CutPoints cut_at_crossings(const ScreenScene& ss, Stats& stats);
 
 // Each piece between consecutive cuts, judged at its midpoint m from `order`
 // (drawing order): the face on each side is the last-drawn fragment covering the
@@ -45,9 +55,8 @@ std::vector<std::vector<P2>> cut_at_crossings(const ScreenScene& ss, Stats& stat
 // only at their end points, and a joined piece would pass over a cut that
 // another curve's piece ends at). The pieces point at their curve's list in
 // `faces` (faces_lists).
-std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Fragment>& order,
-                                   std::vector<std::vector<P2>>& cuts, const std::vector<FacesList>& faces,
-                                   Stats& stats);
+std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Fragment>& order, CutPoints& cuts,
+                                   const std::vector<FacesList>& faces, Stats& stats);
 
 // Everything after the drawing order, for Newell's engine and the BSP engine
 // (bsp.cpp): the pieces above, the map, its stats and hidden lines, and the
