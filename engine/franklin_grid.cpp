@@ -1420,17 +1420,8 @@ void classify_curve(const Grid& g, const ScreenScene& ss, int ci, std::vector<P2
                     Classified& res) {
   const Curve& cv = ss.curves[ci];
   const P2 &s = cv.s->xy(), &t = cv.t->xy();
-  // 9a: sort along the curve (the order of the dominant coordinate): |dx| >= |dy|,
-  // decided on the end points' numbers (no lazy coordinate or difference built).
-  const bool use_x = filtered_sign(
-                         [&] {
-                           return CGAL::abs(approx_of(cv.t->x) - approx_of(cv.s->x)) -
-                                  CGAL::abs(approx_of(cv.t->y) - approx_of(cv.s->y));
-                         },
-                         [&]() -> mpq_class {
-                           return abs(mpq_class(to_mpq(cv.t->x) - to_mpq(cv.s->x))) -
-                                  abs(mpq_class(to_mpq(cv.t->y) - to_mpq(cv.s->y)));
-                         }) != CGAL::NEGATIVE;
+  // 9a: sort along the curve (the order of the dominant coordinate).
+  const bool use_x = mostly_along_x(cv);
   const bool increasing = (use_x ? CGAL::compare(cv.s->x, cv.t->x) : CGAL::compare(cv.s->y, cv.t->y)) == CGAL::SMALLER;
   auto key_less = [&](const P2& a, const P2& b) {   // predicates: no coordinates built
     if (same_rep(a, b)) return false;   // (a point cut twice is often one number)

@@ -47,6 +47,18 @@ bool curve_in_plane(const Facet& f, const Probe& m) {
 
 }  // namespace
 
+bool mostly_along_x(const Curve& cv) {
+  return filtered_sign(
+             [&] {
+               return CGAL::abs(approx_of(cv.t->x) - approx_of(cv.s->x)) -
+                      CGAL::abs(approx_of(cv.t->y) - approx_of(cv.s->y));
+             },
+             [&]() -> mpq_class {
+               return abs(mpq_class(to_mpq(cv.t->x) - to_mpq(cv.s->x))) -
+                      abs(mpq_class(to_mpq(cv.t->y) - to_mpq(cv.s->y)));
+             }) != CGAL::NEGATIVE;
+}
+
 Probe probe_of(const ScreenScene& ss, const Curve& cv) {
   Probe probe;
   probe.curve = &cv;

@@ -48,6 +48,11 @@ struct Probe {
   }
 };
 
+// Whether curve cv runs at least as much along x as along y on the screen
+// (|dx| >= |dy|: its points are ordered by x), decided on its end points'
+// numbers (no lazy coordinate or difference built).
+bool mostly_along_x(const Curve& cv);
+
 // The probe of curve cv of ss (its direction set; at_midpoint sets the point).
 Probe probe_of(const ScreenScene& ss, const Curve& cv);
 

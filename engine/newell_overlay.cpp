@@ -444,7 +444,7 @@ std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Frag
     // Sort the cuts along the curve (by its dominant coordinate); a point cut
     // twice is one cut.
     std::vector<P2>& pts = cuts.at[ci];
-    const bool use_x = CGAL::compare(CGAL::abs(cv.t->x - cv.s->x), CGAL::abs(cv.t->y - cv.s->y)) != CGAL::SMALLER;
+    const bool use_x = mostly_along_x(cv);
     const auto forward = use_x ? CGAL::compare_x(s, t) : CGAL::compare_y(s, t);
     auto along = [&](const P2& a, const P2& b) {   // (a point cut twice is often one number: equal by identity)
       if (exact::same_rep(a, b)) return CGAL::EQUAL;
