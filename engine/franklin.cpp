@@ -77,6 +77,7 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
 
   // Faces that pierce each other draw an intersection line: a curve like any edge.
   add_intersection_lines(grid, ss, threads, st);
+  std::vector<CellRange>().swap(grid.facet_range);   // (what the pair search needed of step 5)
   // 7. Edges into the cells they cross, unless behind the blocking face; 7b drops hidden ones
   // (for a lines-only drawing, edges that are not drawn only where a drawn one is).
   bucket_curves(grid, ss, opt.regions, threads, st);

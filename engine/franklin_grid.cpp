@@ -36,9 +36,6 @@ int cell_index_of(const Axis& bounds, const Interval& iv, Exact&& exact) {
   return i;
 }
 
-struct CellRange {
-  int x0, x1, y0, y1;
-};
 CellRange range_of(const Grid& g, const CGAL::Bbox_2& b) {
   return {g.X.index(b.xmin()), g.X.index(b.xmax()), g.Y.index(b.ymin()), g.Y.index(b.ymax())};
 }
@@ -368,6 +365,14 @@ Grid make_grid(const ScreenScene& ss, double c, int threads, Stats& stats) {
 
 namespace {
 
+// No rows (an item left out of items_by_row).
+constexpr std::array<int, 2> kNoRows{1, 0};
+
+// Rows y0 .. y1 of the cells box b reaches.
+std::array<int, 2> rows_of_box(const Grid& g, const CGAL::Bbox_2& b) {
+  return {g.Y.index(b.ymin()), g.Y.index(b.ymax())};
+}
+
 // The items (facets or curves, by index, in index order) whose box reaches each
 // row of cells, side by side: row r's are items[first[r] .. first[r + 1]). The
 // rows then fill their cells in parallel: a cell sees its items in index order,
@@ -381,8 +386,8 @@ struct ItemsByRow {
 
 // Chunks of items in parallel: each item's rows and each chunk's count per row;
 // then each chunk writes its items at its place in every row.
-template <class BoxOf>
-ItemsByRow items_by_row(const Grid& g, int n, int threads, BoxOf&& box_of) {
+template <class RowsOf>
+ItemsByRow items_by_row(const Grid& g, int n, int threads, RowsOf&& rows_of) {
   const int nrows = g.Y.cells(), size = 16384, chunks = chunk_count(n, size);
   std::vector<std::array<int, 2>> span(static_cast<std::size_t>(n));   // rows y0 .. y1 (y0 > y1: none)
   std::vector<std::vector<std::size_t>> at(static_cast<std::size_t>(chunks));   // per chunk and row: count, then place
@@ -390,11 +395,7 @@ ItemsByRow items_by_row(const Grid& g, int n, int threads, BoxOf&& box_of) {
     std::vector<std::size_t>& count = at[static_cast<std::size_t>(c)];
     count.assign(static_cast<std::size_t>(nrows), 0);
     for (int i = r.begin; i < r.end; ++i) {
-      const CGAL::Bbox_2* b = box_of(i);
-      auto& [y0, y1] = span[static_cast<std::size_t>(i)];
-      if (!b) { y0 = 1; y1 = 0; continue; }
-      y0 = g.Y.index(b->ymin());
-      y1 = g.Y.index(b->ymax());
+      const auto [y0, y1] = span[static_cast<std::size_t>(i)] = rows_of(i);
       for (int iy = y0; iy <= y1; ++iy) ++count[static_cast<std::size_t>(iy)];
     }
   });
@@ -465,8 +466,16 @@ bool bucket_facet(Grid& g, const ScreenScene& ss, int fi, int ix, int iy, std::i
 // Rows of cells in parallel.
 void bucket_facets(Grid& g, ScreenScene& ss, int threads, Stats& stats) {
   const int nf = static_cast<int>(ss.facets.size());
-  const ItemsByRow rows =
-      items_by_row(g, nf, threads, [&](int fi) { return ss.facets[fi].occluder ? &ss.facets[fi].box : nullptr; });
+  // Each facet's cells, once (the rows below and the pair search read them).
+  g.facet_range.resize(ss.facets.size());
+  parallel_chunks(nf, 4096, threads, [&](int, Chunk r) {
+    for (int fi = r.begin; fi < r.end; ++fi)
+      g.facet_range[static_cast<std::size_t>(fi)] = range_of(g, ss.facets[fi].box);
+  });
+  const ItemsByRow rows = items_by_row(g, nf, threads, [&](int fi) {
+    const CellRange& r = g.facet_range[static_cast<std::size_t>(fi)];
+    return ss.facets[fi].occluder ? std::array<int, 2>{r.y0, r.y1} : kNoRows;
+  });
   std::vector<std::vector<int>> kept_by_row(rows.size());
   std::vector<std::array<std::int64_t, 2>> counts(rows.size());   // skipped, blockers
   parallel_for(g.Y.cells(), threads, [&](int iy) {
@@ -475,10 +484,9 @@ void bucket_facets(Grid& g, ScreenScene& ss, int threads, Stats& stats) {
     std::int64_t skipped = 0, blockers = 0;   // (counted here, stored once: rows side by side share cache lines)
     std::vector<int> kept_here;
     for (int fi : rows[row]) {
-      const CGAL::Bbox_2& box = ss.facets[fi].box;
+      const CellRange& r = g.facet_range[static_cast<std::size_t>(fi)];
       bool kept = false;
-      for (int ix = g.X.index(box.xmin()), x1 = g.X.index(box.xmax()); ix <= x1; ++ix)
-        kept |= bucket_facet(g, ss, fi, ix, iy, skipped, blockers);
+      for (int ix = r.x0; ix <= r.x1; ++ix) kept |= bucket_facet(g, ss, fi, ix, iy, skipped, blockers);
       if (kept) kept_here.push_back(fi);
     }
     kept_by_row[row] = std::move(kept_here);
@@ -767,7 +775,7 @@ namespace {
 // whether it is listed in every one of them (not hidden behind a blocker in
 // any), and for a facet that is not, in which: a bit per cell of its box.
 struct Listing {
-  std::vector<CellRange> range;
+  const CellRange* range = nullptr;   // per facet (Grid::facet_range)
   std::vector<char> complete;
   std::vector<std::size_t> first;   // an incomplete facet's bits: rows of `words` words from bits[first]
   std::vector<int> words;
@@ -790,10 +798,7 @@ struct Listing {
 Listing listing_of(const Grid& g, const ScreenScene& ss, int threads) {
   const int nf = static_cast<int>(ss.facets.size());
   Listing l;
-  l.range.resize(ss.facets.size());
-  parallel_chunks(nf, 4096, threads, [&](int, Chunk r) {
-    for (int fi = r.begin; fi < r.end; ++fi) l.range[fi] = range_of(g, ss.facets[fi].box);
-  });
+  l.range = g.facet_range.data();
   std::vector<int> listed(ss.facets.size(), 0);
   for (const Cell& cell : g.cells) {
     for (int fi : cell.facets) ++listed[fi];
@@ -947,7 +952,8 @@ namespace {
 template <class Take, class Into>
 std::int64_t bucket(Grid& g, const ScreenScene& ss, int threads, Take&& take, Into&& into, std::int64_t& listed) {
   const int nc = static_cast<int>(ss.curves.size());
-  const ItemsByRow rows = items_by_row(g, nc, threads, [&](int ci) { return take(ci) ? &ss.curves[ci].box : nullptr; });
+  const ItemsByRow rows =
+      items_by_row(g, nc, threads, [&](int ci) { return take(ci) ? rows_of_box(g, ss.curves[ci].box) : kNoRows; });
   std::vector<std::vector<int>> kept_by_row(rows.size());
   std::vector<std::int64_t> listed_by_row(rows.size(), 0);
   parallel_for(g.Y.cells(), threads, [&](int iy) {

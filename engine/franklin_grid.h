@@ -34,10 +34,16 @@ class Axis {
   double lo_ = 0, bins_per_unit_ = 0;
 };
 
+// The cells a box reaches: columns x0 .. x1, rows y0 .. y1.
+struct CellRange {
+  int x0, x1, y0, y1;
+};
+
 struct Grid {
   int B = 1;                    // cells per side asked for (an axis may have fewer)
   Axis X, Y;                    // cell boundaries
   std::vector<Cell> cells;      // row-major: cells[iy * X.cells() + ix]
+  std::vector<CellRange> facet_range;   // per facet, its box's cells (set by step 5, read by the pair search)
   Cell& at(int ix, int iy) { return cells[static_cast<std::size_t>(iy) * X.cells() + ix]; }
   const Cell& at(int ix, int iy) const { return cells[static_cast<std::size_t>(iy) * X.cells() + ix]; }
 };
