@@ -365,6 +365,18 @@ struct CurveMaker {
   std::vector<std::vector<P3>> clip_edges;   // per facet: its cut by the near plane (perspective only)
   bool cut(int facet) const { return !clip_edges.empty() && !clip_edges[static_cast<std::size_t>(facet)].empty(); }
   std::vector<char> occluder;         // per facet: hides and labels, as culling left it
+  // Per facet, what make() asks of it, side by side (a facet is 208 bytes: its
+  // sharers' facets were most of make()'s cache misses): its facing, and
+  // whether it has corners (not culled before projection or by the near plane).
+  struct Look {
+    Facing facing = Facing::EdgeOn;
+    bool projected = false;
+  };
+  std::vector<Look> look;
+  Facing facing(int facet) const {   // (a facet without corners: edge-on)
+    const Look& l = look[static_cast<std::size_t>(facet)];
+    return l.projected ? l.facing : Facing::EdgeOn;
+  }
 
   bool in_front(std::uint32_t id) const { return front[local[id]] != 0; }
   const P3& image(std::uint32_t id) const { return sv[local[id]]; }
@@ -385,15 +397,14 @@ struct CurveMaker {
     return near_image(
         cut_at_near(world(a), world(b), projected_number(*exact, a, 2, false), projected_number(*exact, b, 2, false)));
   }
-  bool make(const std::vector<Facet>& facets, const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3>& dropped,
-            std::deque<P3>& ends) const;
+  bool make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3>& dropped, std::deque<P3>& ends) const;
 };
 
 // The curve of edge piece wp, made in c (every field set: c may be reused);
 // false if it is dropped (counted in `dropped`: hidden, clipped, seen end-on).
 // An end cut at the near plane is kept in `ends`.
-bool CurveMaker::make(const std::vector<Facet>& facets, const WorldPiece& wp, Curve& c,
-                      std::array<std::int64_t, 3>& dropped, std::deque<P3>& ends) const {
+bool CurveMaker::make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3>& dropped,
+                      std::deque<P3>& ends) const {
   std::int64_t &dropped_hidden = dropped[0], &dropped_clipped = dropped[1], &dropped_point = dropped[2];
   c.sharers.clear();
   c.sharer_edge.clear();
@@ -403,10 +414,10 @@ bool CurveMaker::make(const std::vector<Facet>& facets, const WorldPiece& wp, Cu
   for (const Sharer& s : wp.sharers) {
     c.sharers.push_back(s.facet);
     // A facet not cut at the near plane keeps its vertices: its edge k is the world's.
-    c.sharer_edge.push_back(!cut(s.facet) && !facets[s.facet].v.empty() ? s.edge : -1);
+    const bool projected = look[static_cast<std::size_t>(s.facet)].projected;
+    c.sharer_edge.push_back(!cut(s.facet) && projected ? s.edge : -1);
     if (wf.facets[s.facet].role[s.edge] == EdgeRole::Boundary) c.faces.push_back(wf.facets[s.facet].face);
-    const Facet& f = facets[s.facet];
-    any_occluder |= occluder[s.facet] || (!f.v.empty() && f.facing == Facing::EdgeOn);
+    any_occluder |= occluder[s.facet] || (projected && facing(s.facet) == Facing::EdgeOn);
   }
   // Every facet sharing it is a culled back face: hidden (or coincident with a
   // nearer visible line on screen), so it cannot change the map.
@@ -423,7 +434,6 @@ bool CurveMaker::make(const std::vector<Facet>& facets, const WorldPiece& wp, Cu
       if (wf.facets[s.facet].face == c.faces[0] && fa < 0) fa = s.facet;
       if (wf.facets[s.facet].face == c.faces[1] && fb < 0) fb = s.facet;
     }
-    auto facing = [&](int fi) { return facets[fi].v.empty() ? Facing::EdgeOn : facets[fi].facing; };
     auto spanning_of = [&](int fi) { return spanning_corners(*scene, wf.facets[fi]); };
     Facing ga = facing(fa), gb = facing(fb);
     if ((ga == Facing::Front) != (gb == Facing::Front)) c.kind = EdgeKind::Silhouette;
@@ -433,8 +443,8 @@ bool CurveMaker::make(const std::vector<Facet>& facets, const WorldPiece& wp, Cu
   }
   c.drawn = !c.faces.empty() && (c.kind != EdgeKind::Smooth || smooth);
   // Its place in the (depth, face index) order: the lowest face it belongs to.
-  c.order_face = facets[c.sharers[0]].face;
-  for (int s : c.sharers) c.order_face = std::min(c.order_face, facets[s].face);
+  c.order_face = wf.facets[static_cast<std::size_t>(c.sharers[0])].face;
+  for (int s : c.sharers) c.order_face = std::min(c.order_face, wf.facets[static_cast<std::size_t>(s)].face);
   if (!c.faces.empty()) c.order_face = c.faces[0];
   // Clip at the near plane, project.
   std::uint32_t a = wp.a, b = wp.b;
@@ -748,7 +758,11 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   if (cull) cull_back_faces(ss, M, view, zsign, closed, stats);
 
   M.occluder.resize(ss.facets.size());
-  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) M.occluder[fi] = ss.facets[fi].occluder;
+  M.look.resize(ss.facets.size());
+  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) {
+    M.occluder[fi] = ss.facets[fi].occluder;
+    M.look[fi] = CurveMaker::Look{ss.facets[fi].facing, !ss.facets[fi].v.empty()};
+  }
 
   // Chunks of pieces in parallel, appended in piece order a wave of chunks at a
   // time (parallel_append): the curves are never held twice (curves made in
@@ -770,7 +784,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     if (!latent) out.reserve(static_cast<std::size_t>(r.end - r.begin));
     Curve c;
     for (int i = r.begin; i < r.end; ++i) {
-      if (!M.make(ss.facets, pieces[static_cast<std::size_t>(i)], c, count, ends)) continue;
+      if (!M.make(pieces[static_cast<std::size_t>(i)], c, count, ends)) continue;
       if (latent && !c.drawn) boxes.emplace_back(i, c.box);
       else out.push_back(std::move(c));
     }
@@ -829,7 +843,7 @@ void make_latent_curves(ScreenScene& ss, const std::vector<char>& wanted, int th
     const Chunk r = chunk(k, n, size);
     for (int i = r.begin; i < r.end; ++i) {
       Curve c;
-      if (ss.maker->make(ss.facets, ss.maker->pieces[static_cast<std::size_t>(pick[i])], c, dropped, ends))
+      if (ss.maker->make(ss.maker->pieces[static_cast<std::size_t>(pick[i])], c, dropped, ends))
         out.push_back(std::move(c));
     }
   });
