@@ -49,6 +49,18 @@ CGAL::Comparison_result exact_compare_xy(const P2& a, const P2& b, const Interva
   return as_comparison(mpq_cmp(raw(ea.y()), raw(eb.y())));
 }
 
+// compare(a, b) on their intervals, then their exact values, never counted: the
+// numbers are shared by the threads sorting, and a lazy number's interval
+// narrows once some thread made its exact value, so a counted comparison
+// (CGAL's) would count by which thread came first.
+CGAL::Comparison_result compare_uncounted(const FT& a, const FT& b) {
+  const Interval ia = approx_of(a), ib = approx_of(b);
+  if (ia.sup() < ib.inf()) return CGAL::SMALLER;
+  if (ib.sup() < ia.inf()) return CGAL::LARGER;
+  if (ia.is_point() && ib.is_point()) return CGAL::EQUAL;
+  return as_comparison(mpq_cmp(raw(CGAL::exact(a)), raw(CGAL::exact(b))));
+}
+
 std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph& g, int threads) {
   struct End {   // (24 bytes: two per piece, and the sort's merge buffer holds half as many again)
     Interval x;   // sorts most pairs without touching the point
@@ -93,7 +105,7 @@ std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph
     if (!x_equal) {   // x known as cheap numbers: those compare instead of the points
       const FT *xa = known_x(a), *xb = known_x(b);
       if (xa && xb) {
-        const CGAL::Comparison_result c = CGAL::identical(*xa, *xb) ? CGAL::EQUAL : CGAL::compare(*xa, *xb);
+        const CGAL::Comparison_result c = CGAL::identical(*xa, *xb) ? CGAL::EQUAL : compare_uncounted(*xa, *xb);
         if (c != CGAL::EQUAL) return c;
         x_equal = true;
       }

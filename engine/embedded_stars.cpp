@@ -111,12 +111,16 @@ class ImageHeights {
   }
   // Whether image a is on or below the horizontal line through image v,
   // exactly (vertex images are leaves whose intervals hold them tightly: the
-  // exact values are rarely needed).
+  // exact values are rarely needed). Decided on the intervals read before the
+  // threads started, then on exact values, never on a lazy number's live
+  // interval: a leaf's interval narrows when some thread makes its exact value,
+  // and CGAL's counted comparison would then count by which thread came first
+  // (the stats must not depend on the thread count).
   bool on_or_below(std::uint32_t a, std::uint32_t v) const {
     const Interval &ay = y_[a], &vy = y_[v];
     if (ay.sup() <= vy.inf()) return true;
     if (ay.inf() > vy.sup()) return false;
-    return CGAL::compare(images_[a].y, images_[v].y) != CGAL::LARGER;
+    return to_mpq(images_[a].y) <= to_mpq(images_[v].y);
   }
 
  private:
