@@ -364,13 +364,14 @@ struct CurveMaker {
   const ExactSource* exact = nullptr;   // (the screen scene's)
   std::vector<std::vector<P3>> clip_edges;   // per facet: its cut by the near plane (perspective only)
   bool cut(int facet) const { return !clip_edges.empty() && !clip_edges[static_cast<std::size_t>(facet)].empty(); }
-  std::vector<char> occluder;         // per facet: hides and labels, as culling left it
   // Per facet, what make() asks of it, side by side (a facet is 208 bytes: its
-  // sharers' facets were most of make()'s cache misses): its facing, and
-  // whether it has corners (not culled before projection or by the near plane).
+  // sharers' facets were most of make()'s cache misses): its facing, whether it
+  // has corners (not culled before projection or by the near plane), and
+  // whether it hides and labels (as culling left it).
   struct Look {
     Facing facing = Facing::EdgeOn;
     bool projected = false;
+    bool occluder = false;
   };
   std::vector<Look> look;
   Facing facing(int facet) const {   // (a facet without corners: edge-on)
@@ -414,10 +415,10 @@ bool CurveMaker::make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3
   for (const Sharer& s : wp.sharers) {
     c.sharers.push_back(s.facet);
     // A facet not cut at the near plane keeps its vertices: its edge k is the world's.
-    const bool projected = look[static_cast<std::size_t>(s.facet)].projected;
-    c.sharer_edge.push_back(!cut(s.facet) && projected ? s.edge : -1);
+    const Look& f = look[static_cast<std::size_t>(s.facet)];
+    c.sharer_edge.push_back(!cut(s.facet) && f.projected ? s.edge : -1);
     if (wf.facets[s.facet].role[s.edge] == EdgeRole::Boundary) c.faces.push_back(wf.facets[s.facet].face);
-    any_occluder |= occluder[s.facet] || (projected && facing(s.facet) == Facing::EdgeOn);
+    any_occluder |= f.occluder || (f.projected && f.facing == Facing::EdgeOn);
   }
   // Every facet sharing it is a culled back face: hidden (or coincident with a
   // nearer visible line on screen), so it cannot change the map.
@@ -757,11 +758,10 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
 
   if (cull) cull_back_faces(ss, M, view, zsign, closed, stats);
 
-  M.occluder.resize(ss.facets.size());
   M.look.resize(ss.facets.size());
   for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) {
-    M.occluder[fi] = ss.facets[fi].occluder;
-    M.look[fi] = CurveMaker::Look{ss.facets[fi].facing, !ss.facets[fi].v.empty()};
+    const Facet& f = ss.facets[fi];
+    M.look[fi] = CurveMaker::Look{f.facing, !f.v.empty(), f.occluder};
   }
 
   // Chunks of pieces in parallel, appended in piece order a wave of chunks at a
