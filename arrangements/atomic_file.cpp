@@ -196,11 +196,11 @@ class BackgroundWriter {
   BackgroundWriter& operator=(const BackgroundWriter&) = delete;
   ~BackgroundWriter() { stop(); }
 
-  void write(const std::string& piece) {
+  void write(std::string piece) {
     std::unique_lock<std::mutex> hold(lock_);
     changed_.wait(hold, [&] { return queue_.size() < 2 || error_; });
     if (error_) std::rethrow_exception(error_);
-    queue_.push_back(piece);
+    queue_.push_back(std::move(piece));
     changed_.notify_all();
   }
   // Every piece written, the file flushed and closed.
@@ -260,17 +260,17 @@ void write_outputs_atomically(const std::vector<StreamedOutput>& outputs, bool b
   for (const StreamedOutput& o : outputs) {
     if (o.path == "-") {
       std::string& all = to_stdout.emplace_back();
-      o.render([&](const std::string& piece) { all += piece; });
+      o.render([&](std::string piece) { all += piece; });
       continue;
     }
     pending.push_back(std::make_unique<AtomicFile>(o.path));
     AtomicFile& f = *pending.back();
     if (background) {
       BackgroundWriter writer(f);
-      o.render([&](const std::string& piece) { writer.write(piece); });
+      o.render([&](std::string piece) { writer.write(std::move(piece)); });
       writer.finish();
     } else {
-      o.render([&](const std::string& piece) { f.write(piece); });
+      o.render([&](std::string piece) { f.write(piece); });
       f.finish();
     }
   }

@@ -25,10 +25,12 @@ void write_files_atomically(const std::vector<std::pair<std::string, std::string
 void write_file_atomically(const std::string& path, const std::string& contents);
 
 // An output whose bytes are produced in pieces: render(write) calls write on
-// each piece in order (a GB of JSON need not be held whole).
+// each piece in order (a GB of JSON need not be held whole). A piece is taken
+// by value: one handed over with std::move is never copied (tens of MB of JSON
+// go to the file or to the writing thread as they are).
 struct StreamedOutput {
   std::string path;
-  std::function<void(const std::function<void(const std::string&)>& write)> render;
+  std::function<void(const std::function<void(std::string)>& write)> render;
 };
 // As write_files_atomically: every temporary written whole first, then all renamed;
 // standard output ("-") gets its bytes last, once every file is in place.

@@ -69,7 +69,7 @@ void segment(std::string& out, From&& from, To&& to, EdgeKind kind, const std::v
 // on `threads` threads while the sink still writes the last wave (a map's
 // regions and segments are most of its JSON: tens of MB of text).
 template <class Item>
-void in_blocks(std::size_t n, const Item& item, std::string& out, const std::function<void(const std::string&)>& sink,
+void in_blocks(std::size_t n, const Item& item, std::string& out, const std::function<void(std::string)>& sink,
                int threads) {
   constexpr std::size_t kBlock = 2048;
   const std::size_t blocks = (n + kBlock - 1) / kBlock, wave = 4 * static_cast<std::size_t>(std::max(1, threads));
@@ -81,19 +81,19 @@ void in_blocks(std::size_t n, const Item& item, std::string& out, const std::fun
       for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) item(i, text);
       made[static_cast<std::size_t>(j)] = std::move(text);
     });
-    for (const std::string& text : made) {
+    for (std::string& text : made) {
       if (!out.empty()) {
-        sink(out);
+        sink(std::move(out));
         out.clear();
       }
-      sink(text);
+      sink(std::move(text));
     }
   }
 }
 
 // "hidden" (only when asked for): segments with their own end points.
 void hidden(const std::vector<HiddenSegment>& list, std::string& out,
-            const std::function<void(const std::string&)>& sink, int threads) {
+            const std::function<void(std::string)>& sink, int threads) {
   out += ",\n\"hidden\":[";
   in_blocks(list.size(), [&](std::size_t i, std::string& o) {
     const HiddenSegment& h = list[i];
@@ -107,11 +107,11 @@ void hidden(const std::vector<HiddenSegment>& list, std::string& out,
 
 std::string to_json(const VisibilityMap& map, int threads) {
   std::string all;
-  write_json(map, [&](const std::string& piece) { all += piece; }, threads);
+  write_json(map, [&](std::string piece) { all += piece; }, threads);
   return all;
 }
 
-void write_json(const VisibilityMap& map, const std::function<void(const std::string&)>& sink, int threads) {
+void write_json(const VisibilityMap& map, const std::function<void(std::string)>& sink, int threads) {
   std::string out;
   out += "{\"format\":\"vismap\",\"version\":1,\n\"scene\":{\"file\":";
   quoted(out, map.scene_file);
@@ -172,7 +172,7 @@ void write_json(const VisibilityMap& map, const std::function<void(const std::st
     out += ':' + std::to_string(map.stats.counts[i].second);
   }
   out += "}}}\n";
-  sink(out);
+  sink(std::move(out));
 }
 
 }  // namespace vismap
