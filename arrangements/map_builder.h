@@ -33,6 +33,10 @@ struct MapPiece {
   // compare without the points' own exact values (crossings, mostly: the
   // costliest numbers). Null: not known.
   const exact::FT *xa = nullptr, *xb = nullptr;
+  // A name for a's (b's) point where the engine has one: pieces whose ends have
+  // one id end at one point (a mesh vertex's canonical id: on a mesh most ends
+  // are its vertices, each shared by about six pieces). -1: none.
+  int ida = -1, idb = -1;
 };
 
 // Builds the planar arrangement of the pieces (CGAL Arrangement_2, overlaps

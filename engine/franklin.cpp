@@ -20,6 +20,14 @@ namespace vismap {
 #ifndef VISMAP_FLOAT_KERNEL
 namespace {
 
+// The vertex id of a piece's end point where it is one of its curve's ends (the
+// very point object: a cut point equal to it is not looked for), else -1.
+int vertex_id(const exact::P2& p, const engine::Curve& c) {
+  if (exact::same_rep(p, c.s->xy())) return c.vs;
+  if (exact::same_rep(p, c.t->xy())) return c.vt;
+  return -1;
+}
+
 // The classified pieces as the map takes them, each pointing at its curve's end
 // points and faces list (in `faces`): a chunk of map pieces per chunk of pieces,
 // on `threads` threads, each chunk freed once it is taken.
@@ -36,6 +44,8 @@ std::vector<MapPiece> map_pieces(engine::PieceChunks& pieces, const std::vector<
       const engine::Curve& c = curves[p.curve];
       out.push_back(MapPiece{p.a, p.b, c.s, c.t, p.left, p.right, p.visible, p.visible && c.drawn, c.kind,
                              &faces[p.curve], c.order_face, p.curve});
+      out.back().ida = vertex_id(p.a, c);
+      out.back().idb = vertex_id(p.b, c);
     }
     std::vector<engine::VisiblePiece>().swap(chunk);
   });

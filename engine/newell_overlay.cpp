@@ -522,6 +522,8 @@ std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Frag
         mp.xa = k == 0 ? &cv.s->x : cuts.x_of(pts[k]);
         mp.xb = k + 2 == pts.size() ? &cv.t->x : cuts.x_of(pts[k + 1]);
       }
+      mp.ida = k == 0 ? cv.vs : -1;   // (the curve's own ends: its vertices where it has them)
+      mp.idb = k + 2 == pts.size() ? cv.vt : -1;
       out.push_back(std::move(mp));
     }
   }
