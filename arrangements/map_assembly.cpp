@@ -58,7 +58,8 @@ CGAL::Comparison_result compare_uncounted(const FT& a, const FT& b) {
   if (ia.sup() < ib.inf()) return CGAL::SMALLER;
   if (ib.sup() < ia.inf()) return CGAL::LARGER;
   if (ia.is_point() && ib.is_point()) return CGAL::EQUAL;
-  return as_comparison(mpq_cmp(raw(CGAL::exact(a)), raw(CGAL::exact(b))));
+  mpq_srcptr ea = raw(CGAL::exact(a)), eb = raw(CGAL::exact(b));
+  return mpq_equal(ea, eb) ? CGAL::EQUAL : as_comparison(mpq_cmp(ea, eb));   // (mostly equal: limbs, no product)
 }
 
 std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph& g, int threads) {
@@ -90,25 +91,11 @@ std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph
       ends.push_back(End{approx_point(at % 2 == 0 ? m.a : m.b).x(), at});
     }
   }
-  // Pieces whose line is upright on the screen (its two points' x exactly
-  // equal): every point of it has that x. Two ends on one such line are then
-  // ordered by y alone, most often by y's intervals, with no exact value made:
-  // the points of a vertical edge in a view with the up axis vertical, or of a
-  // terrain's grid column seen along a rational direction.
-  std::vector<char> upright(pieces.size(), 0);
-  engine::parallel_chunks(npieces, 16384, threads, [&](int, engine::Chunk r) {
-    for (int i = r.begin; i < r.end; ++i) {
-      const MapPiece& m = pieces[i];
-      if (m.line < 0 || !m.s || !m.t) continue;
-      const Interval sx = m.s->x.approx(), tx = m.t->x.approx();
-      upright[i] = !(sx.sup() < tx.inf() || tx.sup() < sx.inf()) && CGAL::compare(m.s->x, m.t->x) == CGAL::EQUAL;
-    }
-  });
-  auto on_one_upright_line = [&](const End& a, const End& b) {
-    const int i = a.at / 2, j = b.at / 2;
-    return upright[i] && pieces[i].line == pieces[j].line;
-  };
-  // A cheap number equal to end e's x, where the engine knows one (MapPiece::xa), or null.
+  // A cheap number equal to end e's x, where the engine knows one (MapPiece::xa:
+  // a vertex's x, or the x of the upright screen line its piece lies on), or
+  // null. Two ends with one such number (of one vertical edge, seen with the up
+  // axis vertical) are then ordered by y alone, mostly by y's intervals, with no
+  // exact value made.
   auto known_x = [&](const End& e) { return e.at % 2 == 0 ? pieces[e.at / 2].xa : pieces[e.at / 2].xb; };
   auto compare = [&](const End& a, const End& b) {
     if (a.x.sup() < b.x.inf()) return CGAL::SMALLER;
@@ -116,7 +103,7 @@ std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph
     const P2 &pa = point(a), &pb = point(b);
     if (exact::same_rep(pa, pb)) return CGAL::EQUAL;
     const Interval &ay = approx_point(pa).y(), &by = approx_point(pb).y();
-    bool x_equal = (a.x.is_point() && b.x.is_point()) || on_one_upright_line(a, b);
+    bool x_equal = a.x.is_point() && b.x.is_point();
     if (!x_equal) {   // x known as cheap numbers: those compare instead of the points
       const FT *xa = known_x(a), *xb = known_x(b);
       if (xa && xb) {

@@ -20,12 +20,34 @@ namespace vismap {
 #ifndef VISMAP_FLOAT_KERNEL
 namespace {
 
-// The vertex id of a piece's end point where it is one of its curve's ends (the
-// very point object: a cut point equal to it is not looked for), else -1.
-int vertex_id(const exact::P2& p, const engine::Curve& c) {
-  if (exact::same_rep(p, c.s->xy())) return c.vs;
-  if (exact::same_rep(p, c.t->xy())) return c.vt;
-  return -1;
+// Which of its curve's ends a piece's end point is (the very point object: a
+// cut point equal to one is not looked for), or null.
+const exact::P3* curve_end(const exact::P2& p, const engine::Curve& c) {
+  if (exact::same_rep(p, c.s->xy())) return c.s;
+  if (exact::same_rep(p, c.t->xy())) return c.t;
+  return nullptr;
+}
+
+// Whether the curve lies on an upright screen line (its ends' x exactly equal):
+// every point of it then has that x. On intervals, then exact values, never
+// counted: the ends are shared by the threads, and a lazy number's interval
+// narrows once some thread made its exact value.
+bool upright(const engine::Curve& c) {
+  const exact::Interval sx = exact::approx_of(c.s->x), tx = exact::approx_of(c.t->x);
+  if (sx.sup() < tx.inf() || tx.sup() < sx.inf()) return false;
+  return (sx.is_point() && tx.is_point()) || CGAL::exact(c.s->x) == CGAL::exact(c.t->x);
+}
+
+// What the assembly knows of a piece's ends without arithmetic: their vertex
+// ids (MapPiece::ida, idb), and on an upright curve a cheap number equal to
+// their x (xa, xb). (A vertex's own x is not given: the map writes every
+// vertex's exact point, which the assembly then makes where x ties, as on a
+// terrain's columns, at no extra cost.)
+void name_ends(MapPiece& m, const engine::Curve& c) {
+  const exact::P3 *a = curve_end(m.a, c), *b = curve_end(m.b, c);
+  m.ida = a == c.s ? c.vs : a == c.t ? c.vt : -1;
+  m.idb = b == c.s ? c.vs : b == c.t ? c.vt : -1;
+  if (upright(c)) m.xa = m.xb = &c.s->x;
 }
 
 // The classified pieces as the map takes them, each pointing at its curve's end
@@ -44,8 +66,7 @@ std::vector<MapPiece> map_pieces(engine::PieceChunks& pieces, const std::vector<
       const engine::Curve& c = curves[p.curve];
       out.push_back(MapPiece{p.a, p.b, c.s, c.t, p.left, p.right, p.visible, p.visible && c.drawn, c.kind,
                              &faces[p.curve], c.order_face, p.curve});
-      out.back().ida = vertex_id(p.a, c);
-      out.back().idb = vertex_id(p.b, c);
+      name_ends(out.back(), c);
     }
     std::vector<engine::VisiblePiece>().swap(chunk);
   });
