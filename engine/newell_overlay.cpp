@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <functional>
 #include <stdexcept>
@@ -32,6 +33,9 @@ void bound(const P2& p) {
 // Items by bounding box in a uniform grid of buckets. An item is listed in every
 // bucket its box meets; a pair (or an item and a query box) is reported only by
 // the bucket holding the lower-left corner of their boxes' common part, so once.
+// (That bucket's column is the larger of the two boxes' first columns, the cell
+// index being monotone: each item's first column and row are kept, so that the
+// test divides nothing.)
 class BoxGrid {
  public:
   explicit BoxGrid(const std::vector<CGAL::Bbox_2>& boxes) : boxes_(boxes) {
@@ -54,10 +58,12 @@ class BoxGrid {
     if (!(w_ > 0)) w_ = 1;
     if (!(h_ > 0)) h_ = 1;
     cells_.resize(static_cast<std::size_t>(B_) * B_);
+    first_.resize(boxes.size());
     for (int i = 0; i < static_cast<int>(boxes.size()); ++i) {
       const auto& bx = boxes[i];
-      for (int iy = cy(bx.ymin()); iy <= cy(bx.ymax()); ++iy)
-        for (int ix = cx(bx.xmin()); ix <= cx(bx.xmax()); ++ix) cells_[cell(ix, iy)].push_back(i);
+      first_[i] = {cx(bx.xmin()), cy(bx.ymin())};
+      for (int iy = first_[i].y; iy <= cy(bx.ymax()); ++iy)
+        for (int ix = first_[i].x; ix <= cx(bx.xmax()); ++ix) cells_[cell(ix, iy)].push_back(i);
     }
   }
 
@@ -70,7 +76,8 @@ class BoxGrid {
         for (std::size_t b = a + 1; b < l.size(); ++b) {
           const auto &p = boxes_[l[a]], &q = boxes_[l[b]];
           if (!CGAL::do_overlap(p, q)) continue;
-          if (cell(cx(std::max(p.xmin(), q.xmin())), cy(std::max(p.ymin(), q.ymin()))) != c) continue;
+          const Corner &fp = first_[l[a]], &fq = first_[l[b]];
+          if (cell(std::max(fp.x, fq.x), std::max(fp.y, fq.y)) != c) continue;
           f(std::min(l[a], l[b]), std::max(l[a], l[b]));
         }
     }
@@ -80,13 +87,13 @@ class BoxGrid {
   template <class F>
   void overlapping(const CGAL::Bbox_2& q, F&& f) const {
     if (cells_.empty()) return;
-    for (int iy = cy(q.ymin()); iy <= cy(q.ymax()); ++iy)
-      for (int ix = cx(q.xmin()); ix <= cx(q.xmax()); ++ix) {
+    const Corner fq{cx(q.xmin()), cy(q.ymin())};
+    for (int iy = fq.y; iy <= cy(q.ymax()); ++iy)
+      for (int ix = fq.x; ix <= cx(q.xmax()); ++ix) {
         const int c = cell(ix, iy);
         for (int i : cells_[c]) {
-          const auto& p = boxes_[i];
-          if (!CGAL::do_overlap(p, q)) continue;
-          if (cell(cx(std::max(p.xmin(), q.xmin())), cy(std::max(p.ymin(), q.ymin()))) != c) continue;
+          if (!CGAL::do_overlap(boxes_[i], q)) continue;
+          if (cell(std::max(first_[i].x, fq.x), std::max(first_[i].y, fq.y)) != c) continue;
           f(i);
         }
       }
@@ -102,10 +109,14 @@ class BoxGrid {
   }
   int cell(int ix, int iy) const { return iy * B_ + ix; }
 
+  struct Corner {
+    int x, y;   // column and row
+  };
   const std::vector<CGAL::Bbox_2>& boxes_;
   int B_ = 1;
   double x0_ = 0, y0_ = 0, w_ = 1, h_ = 1;
   std::vector<std::vector<int>> cells_;
+  std::vector<Corner> first_;   // each item's first column and row
 };
 
 // ---- cutting curves ----------------------------------------------------------------
@@ -216,8 +227,9 @@ struct CurveLine {
 // left and just right of m on the curve: m + e n + e^2 d and m - e n + e^2 d for
 // an infinitesimal e > 0, d = t - s the curve's direction and n its left normal.
 // The e^2 term settles a fragment side through m across the curve (a split
-// line, which is no curve).
+// line, which is no curve). Called with the rounding upward (exact::UpwardRounding).
 bool covers(const Fragment& X, int frag, Probe& m, CurveLine& line, bool& left, bool& right) {
+  assert(exact::rounding_upward);
   left = right = true;
   const std::size_t n = X.v.size();
   for (std::size_t k = 0; k < n; ++k) {
@@ -225,7 +237,6 @@ bool covers(const Fragment& X, int frag, Probe& m, CurveLine& line, bool& left, 
     CGAL::Sign o = CGAL::ZERO;
     bool known = false;
     {
-      CGAL::Protect_FPU_rounding<true> upward;
       const Interval v = (q.x.approx() - p.x.approx()) * (m.iy - p.y.approx()) -
                          (q.y.approx() - p.y.approx()) * (m.ix - p.x.approx());
       if (v.inf() > 0) { o = CGAL::POSITIVE; known = true; }
@@ -470,8 +481,11 @@ std::vector<MapPiece> paint_pieces(const ScreenScene& ss, const std::vector<Frag
       // sides); otherwise every fragment around m is looked at.
       cand.clear();
       const CGAL::Bbox_2 mbox(m.ix.inf(), m.iy.inf(), m.ix.sup(), m.iy.sup());
-      grid.overlapping(mbox, [&](int i) { cand.push_back(i); });
+      grid.overlapping(mbox, [&](int i) { cand.push_back(i); });   // (rounding to nearest, as the grid was made)
       std::sort(cand.begin(), cand.end(), std::greater<int>());
+      // Judged with the rounding upward throughout: every predicate from here is
+      // exact::filtered_sign's (one switch of the FPU's mode, not one per fragment side).
+      exact::UpwardRounding upward;
       cov.clear();
       int top_left = -1, top_right = -1;
       std::size_t next = 0;
