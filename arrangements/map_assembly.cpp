@@ -63,7 +63,7 @@ CGAL::Comparison_result compare_uncounted(const FT& a, const FT& b) {
 }
 
 std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph& g, int threads) {
-  struct End {   // (24 bytes: two per piece, and the sort's merge buffer holds half as many again)
+  struct End {   // (24 bytes: one per point named once, or per unnamed end)
     Interval x;   // sorts most pairs without touching the point
     int at;       // 2 * piece + (0: a, 1: b)
   };
