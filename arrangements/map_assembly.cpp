@@ -49,19 +49,6 @@ CGAL::Comparison_result exact_compare_xy(const P2& a, const P2& b, const Interva
   return as_comparison(mpq_cmp(raw(ea.y()), raw(eb.y())));
 }
 
-// compare(a, b) on their intervals, then their exact values, never counted: the
-// numbers are shared by the threads sorting, and a lazy number's interval
-// narrows once some thread made its exact value, so a counted comparison
-// (CGAL's) would count by which thread came first.
-CGAL::Comparison_result compare_uncounted(const FT& a, const FT& b) {
-  const Interval ia = approx_of(a), ib = approx_of(b);
-  if (ia.sup() < ib.inf()) return CGAL::SMALLER;
-  if (ib.sup() < ia.inf()) return CGAL::LARGER;
-  if (ia.is_point() && ib.is_point()) return CGAL::EQUAL;
-  mpq_srcptr ea = raw(CGAL::exact(a)), eb = raw(CGAL::exact(b));
-  return mpq_equal(ea, eb) ? CGAL::EQUAL : as_comparison(mpq_cmp(ea, eb));   // (mostly equal: limbs, no product)
-}
-
 std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph& g, int threads) {
   struct End {   // (24 bytes: one per point named once, or per unnamed end)
     Interval x;   // sorts most pairs without touching the point
@@ -130,17 +117,17 @@ std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph
   engine::parallel_sort(ends.begin(), ends.end(), [](const End& a, const End& b) {
     return a.x.inf() < b.x.inf() || (a.x.inf() == b.x.inf() && a.at < b.at);
   }, threads);
-  std::vector<int> run_start;   // the runs of two ends or more: [run_start[2r], run_start[2r + 1])
+  std::vector<engine::Chunk> runs;   // (of two ends or more)
   for (std::size_t k = 0; k < ends.size();) {
     std::size_t last = k;
     for (double reach = ends[k].x.sup(); last + 1 < ends.size() && !(reach < ends[last + 1].x.inf());)
       reach = std::max(reach, ends[++last].x.sup());
-    if (last > k) run_start.insert(run_start.end(), {static_cast<int>(k), static_cast<int>(last + 1)});
+    if (last > k) runs.push_back({static_cast<int>(k), static_cast<int>(last + 1)});
     k = last + 1;
   }
-  engine::parallel_chunks(static_cast<int>(run_start.size() / 2), 64, threads, [&](int, engine::Chunk r) {
-    for (int run = r.begin; run < r.end; ++run)
-      std::sort(ends.begin() + run_start[2 * run], ends.begin() + run_start[2 * run + 1], [&](const End& a, const End& b) {
+  engine::parallel_chunks(static_cast<int>(runs.size()), 64, threads, [&](int, engine::Chunk r) {
+    for (int i = r.begin; i < r.end; ++i)
+      std::sort(ends.begin() + runs[i].begin, ends.begin() + runs[i].end, [&](const End& a, const End& b) {
         const CGAL::Comparison_result c = compare(a, b);
         return c == CGAL::SMALLER || (c == CGAL::EQUAL && a.at < b.at);
       });

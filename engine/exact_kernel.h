@@ -55,6 +55,22 @@ inline CGAL::Interval_nt<false> approx_of(const FT& x) { return x.approx(); }
 
 using Interval = CGAL::Interval_nt<false>;
 
+#ifndef VISMAP_FLOAT_KERNEL
+// compare(a, b) on their intervals, then their exact values, never counted:
+// where threads share the numbers, a lazy number's interval narrows once some
+// thread made its exact value, and a counted comparison (CGAL's) would count by
+// which thread came first (the stats must not depend on the thread count).
+inline CGAL::Comparison_result compare_uncounted(const FT& a, const FT& b) {
+  const Interval ia = approx_of(a), ib = approx_of(b);
+  if (ia.sup() < ib.inf()) return CGAL::SMALLER;
+  if (ib.sup() < ia.inf()) return CGAL::LARGER;
+  if (ia.is_point() && ib.is_point()) return CGAL::EQUAL;
+  const auto &ea = CGAL::exact(a), &eb = CGAL::exact(b);
+  if (ea == eb) return CGAL::EQUAL;   // (mostly equal: limbs compared, no product)
+  return ea < eb ? CGAL::SMALLER : CGAL::LARGER;
+}
+#endif
+
 // A point's coordinates as intervals (no lazy number built) and exactly.
 #ifdef VISMAP_FLOAT_KERNEL
 inline Interval approx_x(const P2& p) { return Interval(p.x()); }

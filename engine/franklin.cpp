@@ -20,23 +20,17 @@ namespace vismap {
 #ifndef VISMAP_FLOAT_KERNEL
 namespace {
 
-// Which of its curve's ends a piece's end point is (the very point object: a
-// cut point equal to one is not looked for), or null.
-const exact::P3* curve_end(const exact::P2& p, const engine::Curve& c) {
-  if (exact::same_rep(p, c.s->xy())) return c.s;
-  if (exact::same_rep(p, c.t->xy())) return c.t;
-  return nullptr;
+// The vertex id of a piece's end point where it is one of its curve's ends (the
+// very point object: a cut point equal to one is not looked for), else -1.
+int vertex_id(const exact::P2& p, const engine::Curve& c) {
+  if (exact::same_rep(p, c.s->xy())) return c.vs;
+  if (exact::same_rep(p, c.t->xy())) return c.vt;
+  return -1;
 }
 
 // Whether the curve lies on an upright screen line (its ends' x exactly equal):
-// every point of it then has that x. On intervals, then exact values, never
-// counted: the ends are shared by the threads, and a lazy number's interval
-// narrows once some thread made its exact value.
-bool upright(const engine::Curve& c) {
-  const exact::Interval sx = exact::approx_of(c.s->x), tx = exact::approx_of(c.t->x);
-  if (sx.sup() < tx.inf() || tx.sup() < sx.inf()) return false;
-  return (sx.is_point() && tx.is_point()) || CGAL::exact(c.s->x) == CGAL::exact(c.t->x);
-}
+// every point of it then has that x. (Uncounted: the threads share the ends.)
+bool upright(const engine::Curve& c) { return exact::compare_uncounted(c.s->x, c.t->x) == CGAL::EQUAL; }
 
 // What the assembly knows of a piece's ends without arithmetic: their vertex
 // ids (MapPiece::ida, idb), and on an upright curve a cheap number equal to
@@ -44,9 +38,8 @@ bool upright(const engine::Curve& c) {
 // vertex's exact point, which the assembly then makes where x ties, as on a
 // terrain's columns, at no extra cost.)
 void name_ends(MapPiece& m, const engine::Curve& c) {
-  const exact::P3 *a = curve_end(m.a, c), *b = curve_end(m.b, c);
-  m.ida = a == c.s ? c.vs : a == c.t ? c.vt : -1;
-  m.idb = b == c.s ? c.vs : b == c.t ? c.vt : -1;
+  m.ida = vertex_id(m.a, c);
+  m.idb = vertex_id(m.b, c);
   if (upright(c)) m.xa = m.xb = &c.s->x;
 }
 
