@@ -609,6 +609,26 @@ bool meet_only_at_shared_corner(const Facet& A, const Facet& B, const std::vecto
   return crossing != 0 && other != 0 && crossing != other;
 }
 
+// Whether facets A and B, both keeping their input corners, lie in boxes of the
+// world that do not meet: then they share no point (their corners are the
+// input's doubles, so the boxes are exact). Facets of separate objects that
+// overlap on the screen and in depth, as the buildings of a city seen from
+// above, are told apart here with no arithmetic.
+bool boxes_apart_in_world(const Facet& A, const Facet& B, const std::vector<Vec3>& world) {
+  if (!input_corners(A) || !input_corners(B)) return false;
+  auto box = [&](const Facet& F) {
+    std::array<double, 6> b{HUGE_VAL, HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (const long v : F.id) {
+      const Vec3& p = vertex_at(world, v);
+      b = {std::min(b[0], p.x), std::min(b[1], p.y), std::min(b[2], p.z),
+           std::max(b[3], p.x), std::max(b[4], p.y), std::max(b[5], p.z)};
+    }
+    return b;
+  };
+  const std::array<double, 6> a = box(A), b = box(B);
+  return a[3] < b[0] || b[3] < a[0] || a[4] < b[1] || b[4] < a[1] || a[5] < b[2] || b[5] < a[2];
+}
+
 // Whether triangles A and B, both keeping their input corners, are proved on the
 // input's doubles to have no crossing (most pairs a grid offers on a mesh are
 // neighbours, apart). False: not proved.
@@ -653,8 +673,9 @@ Meets meets_plane(const Facet& F, const Facet& G, Side&& side, std::size_t& diag
 }  // namespace
 
 bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3>* world, P2& p, P2& q) {
-  // Most pairs a grid offers are neighbours on a mesh, apart: told on doubles.
-  if (world && apart_in_world(A, B, *world)) return false;
+  // Most pairs a grid offers are neighbours on a mesh, or parts of separate
+  // objects, apart: told on doubles.
+  if (world && (boxes_apart_in_world(A, B, *world) || apart_in_world(A, B, *world))) return false;
   auto meets = [&](const Facet& F, const Facet& G, std::size_t& diagonal) {
     return meets_plane(F, G, [&](std::size_t k) { return static_cast<int>(depth_above(F.v[k], G, world, F.id[k])); },
                        diagonal);
