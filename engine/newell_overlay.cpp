@@ -83,6 +83,19 @@ class BoxGrid {
     }
   }
 
+  // f(i) for the items whose box contains q, in the order `overlapping` reports
+  // them, until f returns true. Each such box holds q's lower left corner, so
+  // it is listed in that corner's cell: one cell holds them all, once.
+  template <class F>
+  void containing(const CGAL::Bbox_2& q, F&& f) const {
+    if (cells_.empty()) return;
+    for (int i : cells_[cell(cx(q.xmin()), cy(q.ymin()))]) {
+      const CGAL::Bbox_2& b = boxes_[i];
+      if (b.xmin() <= q.xmin() && q.xmax() <= b.xmax() && b.ymin() <= q.ymin() && q.ymax() <= b.ymax() && f(i))
+        return;
+    }
+  }
+
   // f(i) for every item whose box overlaps q.
   template <class F>
   void overlapping(const CGAL::Bbox_2& q, F&& f) const {
@@ -350,26 +363,22 @@ void drop_painted_over(ScreenScene& ss, const std::vector<Fragment>& order, Stat
   const BoxGrid grid(boxes);
   auto covered = [&](const Curve& cv) {
     bool found = false;
-    grid.overlapping(cv.box, [&](int i) {
+    grid.containing(cv.box, [&](int i) {
       const Fragment& G = order[i];
-      const CGAL::Bbox_2& b = G.box;
-      if (found || !(b.xmin() <= cv.box.xmin() && cv.box.xmax() <= b.xmax() && b.ymin() <= cv.box.ymin() &&
-                     cv.box.ymax() <= b.ymax()))
-        return;
       if (std::binary_search(cv.faces.begin(), cv.faces.end(), G.face) ||
           std::find(cv.sharers.begin(), cv.sharers.end(), G.facet) != cv.sharers.end())
-        return;
+        return false;
       // Only a planar polygon's fragment: a line another curve shares with a fanned
       // one can pass behind the fold's front layer unhidden (it shares the face), and
       // its visibility changes where this curve crosses it (a fuzz finding).
       const Facet& F = ss.facets[G.facet];
-      if (!F.planar) return;
+      if (!F.planar) return false;
       for (const P3* e : {cv.s, cv.t}) {
         for (std::size_t k = 0; k < G.v.size(); ++k)
-          if (orient(G.v[k], G.v[(k + 1) % G.v.size()], *e) != CGAL::POSITIVE) return;
-        if (plane_side(*e, F) != CGAL::POSITIVE) return;   // the curve's end strictly behind G
+          if (orient(G.v[k], G.v[(k + 1) % G.v.size()], *e) != CGAL::POSITIVE) return false;
+        if (plane_side(*e, F) != CGAL::POSITIVE) return false;   // the curve's end strictly behind G
       }
-      found = true;
+      return found = true;
     });
     return found;
   };
