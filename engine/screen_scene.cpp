@@ -170,9 +170,16 @@ bool is_crease(const Spanning& f, const Spanning& g, double c) {
     se = e.inf() > 0 ? 1 : e.sup() < 0 ? -1 : 2;
   }
   if (sd == 2 || se == 2) {
-    const auto [d, e] = crease_terms<CGAL::Mpzf>(f, g, c);
+    // Exactly, d first: where it is 0 (faces at a right angle: every edge of a
+    // box, the case the filters cannot settle), d^2 - c^2 l = -c^2 l has the
+    // sign of -c^2 (l > 0: a facet's spanning corners are not collinear).
+    using M = CGAL::Mpzf;
+    const auto n1 = world::normal_of<M>(f.o, f.p, f.q), n2 = world::normal_of<M>(g.o, g.p, g.q);
+    const M d = n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2];
     sd = d.sign();
-    se = e.sign();
+    if (sd == 0) return c > 0;
+    const M l = (n1[0] * n1[0] + n1[1] * n1[1] + n1[2] * n1[2]) * (n2[0] * n2[0] + n2[1] * n2[1] + n2[2] * n2[2]);
+    se = (d * d - M(c) * M(c) * l).sign();
   }
   if (c >= 0) return sd < 0 || se < 0;
   return sd < 0 && se > 0;
@@ -307,7 +314,6 @@ InViewOrder in_view_order(const WorldScene& world, const std::vector<std::uint32
 // det(q - o, r - o, v - o) for corners o, q, r of f that span its plane. False
 // when f has no three such corners in the input (cut at the near plane).
 bool in_world_plane(const std::vector<Vec3>& input, long v, const Facet& f) {
-  using M = CGAL::Mpzf;
   auto at = [&](long id) -> const Vec3& { return input[static_cast<std::size_t>(id)]; };
   const std::size_t m = f.id.size();
   std::size_t k0 = 0;
@@ -315,9 +321,8 @@ bool in_world_plane(const std::vector<Vec3>& input, long v, const Facet& f) {
   for (std::size_t k = k0 + 1; k + 1 < m; ++k) {
     if (f.id[k] < 0 || f.id[k + 1] < 0) continue;
     const Vec3 &o = at(f.id[k0]), &q = at(f.id[k]), &r = at(f.id[k + 1]);
-    const auto n = world::normal_of<M>(o, q, r);
-    if (n[0].sign() == 0 && n[1].sign() == 0 && n[2].sign() == 0) continue;   // collinear corners
-    return world::det<M>(o, q, r, at(v)).sign() == 0;
+    if (world::collinear(o, q, r)) continue;
+    return world::orientation(o, q, r, at(v)) == 0;
   }
   return false;
 }

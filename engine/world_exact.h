@@ -54,6 +54,24 @@ inline int orientation(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& 
   return det<CGAL::Mpzf>(o, a, b, c).sign();
 }
 
+// Whether o, a and b lie on one line ((a - o) x (b - o) = 0), exact: a normal
+// component clearly apart from 0 on doubles says no, else binary floats
+// decide. (Each component, from rounded differences, two rounded products and
+// a rounded difference, is off by at most about 8 u A B, u = 2^-53, A and B
+// the largest |coordinate| of a - o and b - o: the bound below is four times
+// that; within 2^-400..2^400 no product underflows to where it would not hold.)
+inline bool collinear(const Vec3& o, const Vec3& a, const Vec3& b) {
+  const double A = std::max({std::abs(a.x - o.x), std::abs(a.y - o.y), std::abs(a.z - o.z)});
+  const double B = std::max({std::abs(b.x - o.x), std::abs(b.y - o.y), std::abs(b.z - o.z)});
+  if (A >= 0x1p-400 && A <= 0x1p400 && B >= 0x1p-400 && B <= 0x1p400) {
+    const double bound = 0x1p-48 * A * B;
+    for (const double c : normal_of<double>(o, a, b))
+      if (std::abs(c) > bound) return false;
+  }
+  const std::array<CGAL::Mpzf, 3> n = normal_of<CGAL::Mpzf>(o, a, b);
+  return n[0].sign() == 0 && n[1].sign() == 0 && n[2].sign() == 0;
+}
+
 // orientation(o, a, b, p) for several points p against one plane: its normal
 // (a - o) x (b - o) made once in doubles, then sign(n . (p - o)) where a static
 // bound settles it (|error| <= 54 u A B C, u = 2^-53, with A, B, C the largest
