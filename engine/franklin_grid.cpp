@@ -1141,14 +1141,16 @@ struct CrossingOf {
   static result_type fraction_free(const result_type& a, const result_type& b, const result_type& c,
                                    const result_type& d) {
     const mpq_class* q[8] = {&a.x(), &a.y(), &b.x(), &b.y(), &c.x(), &c.y(), &d.x(), &d.y()};
-    mpz_class L = q[0]->get_den();
-    for (int i = 1; i < 8; ++i)
-      if (q[i]->get_den() != L) mpz_lcm(L.get_mpz_t(), L.get_mpz_t(), q[i]->get_den_mpz_t());
-    mpz_class X[8];
-    for (int i = 0; i < 8; ++i) {
-      if (q[i]->get_den() == L) { X[i] = q[i]->get_num(); continue; }
-      mpz_divexact(X[i].get_mpz_t(), L.get_mpz_t(), q[i]->get_den_mpz_t());
-      X[i] *= q[i]->get_num();
+    mpz_class L, X[8];
+    if (!over_power_of_two(q, L, X)) {
+      L = q[0]->get_den();
+      for (int i = 1; i < 8; ++i)
+        if (q[i]->get_den() != L) mpz_lcm(L.get_mpz_t(), L.get_mpz_t(), q[i]->get_den_mpz_t());
+      for (int i = 0; i < 8; ++i) {
+        if (q[i]->get_den() == L) { X[i] = q[i]->get_num(); continue; }
+        mpz_divexact(X[i].get_mpz_t(), L.get_mpz_t(), q[i]->get_den_mpz_t());
+        X[i] *= q[i]->get_num();
+      }
     }
     const mpz_class ux = X[2] - X[0], uy = X[3] - X[1], vx = X[6] - X[4], vy = X[7] - X[5];
     const mpz_class wx = X[4] - X[0], wy = X[5] - X[1];
@@ -1167,6 +1169,22 @@ struct CrossingOf {
       return r;
     };
     return result_type(coordinate(0, X[0], ux), coordinate(1, X[1], uy));
+  }
+  // Where every denominator is a power of two (an orthographic view's
+  // coordinates: sums of products of doubles), their common one is the largest,
+  // L = 2^E, and X[i] = q[i] L shifted: no gcd (mpz_lcm takes one), no division.
+  static bool over_power_of_two(const mpq_class* const (&q)[8], mpz_class& L, mpz_class (&X)[8]) {
+    mp_bitcnt_t e[8], E = 0;
+    for (int i = 0; i < 8; ++i) {
+      const mpz_srcptr den = q[i]->get_den_mpz_t();
+      e[i] = mpz_scan1(den, 0);
+      if (mpz_sizeinbase(den, 2) != e[i] + 1) return false;   // (another bit set)
+      E = std::max(E, e[i]);
+    }
+    for (int i = 0; i < 8; ++i) mpz_mul_2exp(X[i].get_mpz_t(), q[i]->get_num_mpz_t(), E - e[i]);
+    L = 1;
+    mpz_mul_2exp(L.get_mpz_t(), L.get_mpz_t(), E);
+    return true;
   }
   // Two enclosures of one number: their common part.
   static Interval meet(const Interval& p, const Interval& q) {
