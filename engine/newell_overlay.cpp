@@ -57,23 +57,31 @@ class BoxGrid {
     h_ = (all.ymax() - y0_) / B_;
     if (!(w_ > 0)) w_ = 1;
     if (!(h_ > 0)) h_ = 1;
-    cells_.resize(static_cast<std::size_t>(B_) * B_);
+    // The buckets as one array (each bucket's items from start_[c]): counted,
+    // then filled, in item order. (A vector per bucket was an allocation each,
+    // five grids per view.)
     first_.resize(boxes.size());
-    for (int i = 0; i < static_cast<int>(boxes.size()); ++i) {
-      const auto& bx = boxes[i];
-      first_[i] = {cx(bx.xmin()), cy(bx.ymin())};
-      for (int iy = first_[i].y; iy <= cy(bx.ymax()); ++iy)
-        for (int ix = first_[i].x; ix <= cx(bx.xmax()); ++ix) cells_[cell(ix, iy)].push_back(i);
-    }
+    for (int i = 0; i < static_cast<int>(boxes.size()); ++i) first_[i] = {cx(boxes[i].xmin()), cy(boxes[i].ymin())};
+    auto each_cell = [&](int i, auto&& visit) {
+      for (int iy = first_[i].y; iy <= cy(boxes[i].ymax()); ++iy)
+        for (int ix = first_[i].x; ix <= cx(boxes[i].xmax()); ++ix) visit(cell(ix, iy));
+    };
+    start_.assign(static_cast<std::size_t>(B_) * B_ + 1, 0);
+    for (int i = 0; i < static_cast<int>(boxes.size()); ++i) each_cell(i, [&](int c) { ++start_[c + 1]; });
+    for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    items_.resize(start_.back());
+    std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
+    for (int i = 0; i < static_cast<int>(boxes.size()); ++i) each_cell(i, [&](int c) { items_[fill[c]++] = i; });
   }
 
   // f(i, j), i < j, for every two items whose boxes overlap.
   template <class F>
   void pairs(F&& f) const {
-    for (int c = 0; c < static_cast<int>(cells_.size()); ++c) {
-      const auto& l = cells_[c];
-      for (std::size_t a = 0; a < l.size(); ++a)
-        for (std::size_t b = a + 1; b < l.size(); ++b) {
+    for (int c = 0; c + 1 < static_cast<int>(start_.size()); ++c) {
+      const int* l = items_.data() + start_[c];
+      const std::size_t n = start_[c + 1] - start_[c];
+      for (std::size_t a = 0; a < n; ++a)
+        for (std::size_t b = a + 1; b < n; ++b) {
           const auto &p = boxes_[l[a]], &q = boxes_[l[b]];
           if (!CGAL::do_overlap(p, q)) continue;
           const Corner &fp = first_[l[a]], &fq = first_[l[b]];
@@ -88,8 +96,10 @@ class BoxGrid {
   // it is listed in that corner's cell: one cell holds them all, once.
   template <class F>
   void containing(const CGAL::Bbox_2& q, F&& f) const {
-    if (cells_.empty()) return;
-    for (int i : cells_[cell(cx(q.xmin()), cy(q.ymin()))]) {
+    if (items_.empty()) return;
+    const int c = cell(cx(q.xmin()), cy(q.ymin()));
+    for (std::size_t k = start_[c]; k < start_[c + 1]; ++k) {
+      const int i = items_[k];
       const CGAL::Bbox_2& b = boxes_[i];
       if (b.xmin() <= q.xmin() && q.xmax() <= b.xmax() && b.ymin() <= q.ymin() && q.ymax() <= b.ymax() && f(i))
         return;
@@ -99,12 +109,13 @@ class BoxGrid {
   // f(i) for every item whose box overlaps q.
   template <class F>
   void overlapping(const CGAL::Bbox_2& q, F&& f) const {
-    if (cells_.empty()) return;
+    if (items_.empty()) return;
     const Corner fq{cx(q.xmin()), cy(q.ymin())};
     for (int iy = fq.y; iy <= cy(q.ymax()); ++iy)
       for (int ix = fq.x; ix <= cx(q.xmax()); ++ix) {
         const int c = cell(ix, iy);
-        for (int i : cells_[c]) {
+        for (std::size_t k = start_[c]; k < start_[c + 1]; ++k) {
+          const int i = items_[k];
           if (!CGAL::do_overlap(boxes_[i], q)) continue;
           if (cell(std::max(first_[i].x, fq.x), std::max(first_[i].y, fq.y)) != c) continue;
           f(i);
@@ -128,7 +139,8 @@ class BoxGrid {
   const std::vector<CGAL::Bbox_2>& boxes_;
   int B_ = 1;
   double x0_ = 0, y0_ = 0, w_ = 1, h_ = 1;
-  std::vector<std::vector<int>> cells_;
+  std::vector<std::size_t> start_;   // bucket c's items are items_[start_[c] .. start_[c + 1])
+  std::vector<int> items_;
   std::vector<Corner> first_;   // each item's first column and row
 };
 
