@@ -479,6 +479,28 @@ TEST(Crease, KindAtTheThresholdAsTheExactTest) {
   EXPECT_GT(smooth, 100);
 }
 
+// Two faces at a right angle (the edges of every box): n1.n2 is exactly 0, which
+// no filter settles. The angle between the normals is 90 degrees, so the edge is
+// a crease under every crease angle below 90 and smooth above it (where the
+// cosine is negative: n1.n2 < c |n1| |n2| is false for n1.n2 = 0).
+TEST(Crease, RightAngleOnEitherSideOfNinetyDegrees) {
+  for (const double deg : {1.0, 30.0, 89.0, 91.0, 120.0, 179.0})
+    for (const double scale : {1.0, 0x1p40, 0x1p-40})
+      for (const double offset : {0.0, 0.3, 1e6}) {
+        auto at = [&](double x, double y, double h) { return Vec3{(x + offset) * scale, (y + offset) * scale, h * scale}; };
+        vismap::Scene scene;
+        scene.vertices = {at(0, 0, 0), at(1, 0, 0), at(0.5, 1, 0), at(0.5, 0, 1)};
+        scene.faces = {{0, 1, 2}, {1, 0, 3}};   // normals +z and +y: both seen from the front
+        vismap::Options opt;
+        opt.crease_deg = deg;
+        const vismap::View view = vismap::make_view(ortho({0.3, -1, -1}), scene);
+        const vismap::VisibilityMap map = vismap::visibility_franklin(scene, view, opt);
+        const bool drawn = std::any_of(map.segments.begin(), map.segments.end(),
+                                       [](const vismap::Segment& g) { return g.kind == vismap::EdgeKind::Crease; });
+        EXPECT_EQ(drawn, deg < 90) << deg << " degrees, scale " << scale << ", offset " << offset;
+      }
+}
+
 // ---- threads change nothing -------------------------------------------------------------
 
 // Franklin's engine runs its loops on several threads and joins their results in
