@@ -22,7 +22,11 @@ void quoted(std::string& out, const std::string& s) {
   out += '"';
 }
 
-void number(std::string& out, const mpq_class& q) { out += '"'; out += canonical(q); out += '"'; }
+void number(std::string& out, const mpq_class& q) {
+  out += '"';
+  append_canonical(out, q);
+  out += '"';
+}
 
 void point(std::string& out, const Point2& p) {
   out += '[';

@@ -9,10 +9,38 @@
 
 namespace vismap {
 
-std::string canonical(const mpq_class& q) {
+namespace {
+
+// q's digits after `out`, as GMP prints them ("n" when the denominator is 1).
+void append_digits(std::string& out, const mpq_class& q) {
+  const std::size_t at = out.size();
+  out.resize(at + mpz_sizeinbase(q.get_num_mpz_t(), 10) + mpz_sizeinbase(q.get_den_mpz_t(), 10) + 3);
+  mpq_get_str(out.data() + at, 10, q.get_mpq_t());
+  out.resize(at + std::strlen(out.data() + at));
+}
+
+}  // namespace
+
+void append_canonical(std::string& out, const mpq_class& q) {
+  // GMP's arithmetic keeps every value in lowest terms; a map's numbers are
+  // made by it, so this mostly only checks: without a gcd where the denominator
+  // is a power of two (an orthographic view's coordinates), whose fraction is
+  // in lowest terms when the numerator is odd or the denominator 1.
+  const mpz_srcptr num = q.get_num_mpz_t(), den = q.get_den_mpz_t();
+  const mp_bitcnt_t twos = mpz_scan1(den, 0);
+  if (mpz_sgn(den) > 0 && mpz_sizeinbase(den, 2) == twos + 1 && (twos == 0 || mpz_odd_p(num))) {
+    append_digits(out, q);
+    return;
+  }
   mpq_class c(q);
-  c.canonicalize();   // lowest terms, positive denominator; GMP prints "n" when den = 1
-  return c.get_str();
+  c.canonicalize();   // lowest terms, positive denominator
+  append_digits(out, c);
+}
+
+std::string canonical(const mpq_class& q) {
+  std::string s;
+  append_canonical(s, q);
+  return s;
 }
 
 double nearest_double(const mpq_class& q) {

@@ -8,6 +8,8 @@
 namespace vismap {
 
 std::string canonical(const mpq_class& q);
+// canonical(q) appended to out.
+void append_canonical(std::string& out, const mpq_class& q);
 
 // The double nearest to q (ties to even; subnormals and overflow to infinity as
 // IEEE rounding gives them). GMP's own mpq_get_d truncates.

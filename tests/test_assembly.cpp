@@ -19,6 +19,7 @@
 
 #include "arrangements/json_writer.h"
 #include "arrangements/map_builder.h"
+#include "arrangements/rational.h"
 
 namespace {
 
@@ -236,6 +237,31 @@ TEST(Assembly, UndrawnPieceInsideARegionAddsNoVertex) {
     EXPECT_EQ(m.vertices.size(), 4u);
     EXPECT_EQ(m.segments.size(), 4u);
   }
+}
+
+// The spec's numbers: lowest terms, positive denominator, "n" for an integer,
+// no "-0"; told without a gcd where the denominator is a power of two, so the
+// other cases are made raw here (GMP's arithmetic would normalise them).
+TEST(Canonical, LowestTermsWhateverTheInput) {
+  auto raw = [](long n, long d) {
+    mpq_class q;
+    q.get_num() = n;
+    q.get_den() = d;   // (not normalised)
+    return q;
+  };
+  EXPECT_EQ(canonical(mpq_class(3)), "3");
+  EXPECT_EQ(canonical(mpq_class(-0.0)), "0");
+  EXPECT_EQ(canonical(mpq_class(7, 16)), "7/16");
+  EXPECT_EQ(canonical(mpq_class(-7, 16)), "-7/16");
+  EXPECT_EQ(canonical(mpq_class(-2, 3)), "-2/3");
+  EXPECT_EQ(canonical(raw(2, 4)), "1/2");      // power of two, even numerator
+  EXPECT_EQ(canonical(raw(0, 8)), "0");
+  EXPECT_EQ(canonical(raw(6, 9)), "2/3");      // neither
+  EXPECT_EQ(canonical(raw(3, -4)), "-3/4");    // negative denominator
+  EXPECT_EQ(canonical(raw(-12, 1)), "-12");
+  std::string s = "x=";
+  append_canonical(s, raw(10, 4));
+  EXPECT_EQ(s, "x=5/2");
 }
 
 }  // namespace
