@@ -11,13 +11,7 @@ Deterministic for a given seed (Python's random). Standard library only.
 import argparse
 import random
 
-
-def box(x0, y0, z0, x1, y1, z1):
-    v = [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0),
-         (x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)]
-    # Outward-facing quads (counter-clockwise seen from outside).
-    f = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
-    return v, f
+from gen_city import box, write_off   # (bench/: the city's box and writer)
 
 
 def main():
@@ -36,13 +30,7 @@ def main():
                 base = len(verts)
                 verts.extend(v)
                 faces.extend(tuple(base + q for q in quad) for quad in f)
-    with open(a.out, "w") as out:
-        out.write("OFF\n# %d^3 boxes, seed %d (bench/gen_boxes.py)\n" % (a.n, a.seed))
-        out.write("%d %d 0\n" % (len(verts), len(faces)))
-        for x, y, z in verts:
-            out.write("%.17g %.17g %.17g\n" % (x, y, z))
-        for q in faces:
-            out.write("4 %d %d %d %d\n" % q)
+    write_off(a.out, "%d^3 boxes, seed %d (bench/gen_boxes.py)" % (a.n, a.seed), verts, faces)
 
 
 if __name__ == "__main__":

@@ -46,8 +46,13 @@ def main():
             base = len(verts)
             verts.extend(v)
             faces.extend(tuple(base + k for k in q) for q in f)
-    with open(a.out, "w") as out:
-        out.write("OFF\n# city of %d buildings, seed %d (bench/gen_city.py)\n" % (a.buildings, a.seed))
+    write_off(a.out, "city of %d buildings, seed %d (bench/gen_city.py)" % (a.buildings, a.seed), verts, faces)
+
+
+def write_off(path, comment, verts, faces):
+    """Quads as OFF, coordinates exactly (%.17g)."""
+    with open(path, "w") as out:
+        out.write("OFF\n# %s\n" % comment)
         out.write("%d %d 0\n" % (len(verts), len(faces)))
         for x, y, z in verts:
             out.write("%.17g %.17g %.17g\n" % (x, y, z))

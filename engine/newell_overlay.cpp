@@ -91,19 +91,20 @@ class BoxGrid {
     }
   }
 
-  // f(i) for the items whose box contains q, in the order `overlapping` reports
-  // them, until f returns true. Each such box holds q's lower left corner, so
-  // it is listed in that corner's cell: one cell holds them all, once.
+  // Whether f(i) holds for an item whose box contains q, asked in the order
+  // `overlapping` reports them, until one does. Each such box holds q's lower
+  // left corner, so it is listed in that corner's cell: one cell holds them all, once.
   template <class F>
-  void containing(const CGAL::Bbox_2& q, F&& f) const {
-    if (items_.empty()) return;
+  bool any_containing(const CGAL::Bbox_2& q, F&& f) const {
+    if (items_.empty()) return false;
     const int c = cell(cx(q.xmin()), cy(q.ymin()));
     for (std::size_t k = start_[c]; k < start_[c + 1]; ++k) {
       const int i = items_[k];
       const CGAL::Bbox_2& b = boxes_[i];
       if (b.xmin() <= q.xmin() && q.xmax() <= b.xmax() && b.ymin() <= q.ymin() && q.ymax() <= b.ymax() && f(i))
-        return;
+        return true;
     }
+    return false;
   }
 
   // f(i) for every item whose box overlaps q.
@@ -374,8 +375,7 @@ void drop_painted_over(ScreenScene& ss, const std::vector<Fragment>& order, Stat
   for (const Fragment& f : order) boxes.push_back(f.box);
   const BoxGrid grid(boxes);
   auto covered = [&](const Curve& cv) {
-    bool found = false;
-    grid.containing(cv.box, [&](int i) {
+    return grid.any_containing(cv.box, [&](int i) {
       const Fragment& G = order[i];
       if (std::binary_search(cv.faces.begin(), cv.faces.end(), G.face) ||
           std::find(cv.sharers.begin(), cv.sharers.end(), G.facet) != cv.sharers.end())
@@ -390,9 +390,8 @@ void drop_painted_over(ScreenScene& ss, const std::vector<Fragment>& order, Stat
           if (orient(G.v[k], G.v[(k + 1) % G.v.size()], *e) != CGAL::POSITIVE) return false;
         if (plane_side(*e, F) != CGAL::POSITIVE) return false;   // the curve's end strictly behind G
       }
-      return found = true;
+      return true;
     });
-    return found;
   };
   const std::size_t before = ss.curves.size();
   ss.curves.erase(std::remove_if(ss.curves.begin(), ss.curves.end(), covered), ss.curves.end());

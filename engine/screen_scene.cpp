@@ -134,11 +134,21 @@ Spanning spanning_corners(const Scene& scene, const WorldFacet& w) {
 // d = n1.n2 and l = |n1|^2 |n2|^2, for c >= 0: d < 0 or d^2 < c^2 l; for c < 0:
 // d < 0 and d^2 > c^2 l. Signs from intervals first, exactly where they cannot tell.
 template <class N>
+struct CreaseTerms {
+  std::array<N, 3> n1, n2;
+  N d;
+  CreaseTerms(const Spanning& f, const Spanning& g)
+      : n1(world::normal_of<N>(f.o, f.p, f.q)), n2(world::normal_of<N>(g.o, g.p, g.q)),
+        d(n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2]) {}
+  N e(double c) const {   // d^2 - c^2 l
+    const N l = (n1[0] * n1[0] + n1[1] * n1[1] + n1[2] * n1[2]) * (n2[0] * n2[0] + n2[1] * n2[1] + n2[2] * n2[2]);
+    return d * d - N(c) * N(c) * l;
+  }
+};
+template <class N>
 std::pair<N, N> crease_terms(const Spanning& f, const Spanning& g, double c) {
-  const auto n1 = world::normal_of<N>(f.o, f.p, f.q), n2 = world::normal_of<N>(g.o, g.p, g.q);
-  const N d = n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2];
-  const N l = (n1[0] * n1[0] + n1[1] * n1[1] + n1[2] * n1[2]) * (n2[0] * n2[0] + n2[1] * n2[1] + n2[2] * n2[2]);
-  return {d, d * d - N(c) * N(c) * l};
+  const CreaseTerms<N> t(f, g);
+  return {t.d, t.e(c)};
 }
 // The same signs on doubles, where a static error bound settles them. With D
 // the largest |coordinate| of the four edge vectors, each normal component is
@@ -173,13 +183,10 @@ bool is_crease(const Spanning& f, const Spanning& g, double c) {
     // Exactly, d first: where it is 0 (faces at a right angle: every edge of a
     // box, the case the filters cannot settle), d^2 - c^2 l = -c^2 l has the
     // sign of -c^2 (l > 0: a facet's spanning corners are not collinear).
-    using M = CGAL::Mpzf;
-    const auto n1 = world::normal_of<M>(f.o, f.p, f.q), n2 = world::normal_of<M>(g.o, g.p, g.q);
-    const M d = n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2];
-    sd = d.sign();
+    const CreaseTerms<CGAL::Mpzf> t(f, g);
+    sd = t.d.sign();
     if (sd == 0) return c > 0;
-    const M l = (n1[0] * n1[0] + n1[1] * n1[1] + n1[2] * n1[2]) * (n2[0] * n2[0] + n2[1] * n2[1] + n2[2] * n2[2]);
-    se = (d * d - M(c) * M(c) * l).sign();
+    se = t.e(c).sign();
   }
   if (c >= 0) return sd < 0 || se < 0;
   return sd < 0 && se > 0;
