@@ -8,11 +8,13 @@
 #include <limits>
 #include <stdexcept>
 
+#include "engine/cap_inside.h"
 #include "engine/culling.h"
 #include "engine/edge_pieces.h"
 #include "engine/engine_run.h"
 #include "engine/lazy_leaves.h"
 #include "engine/morton.h"
+#include "engine/self_contact.h"
 #include "engine/parallel.h"
 #include "engine/world_exact.h"
 
@@ -526,11 +528,58 @@ bool DepthPlane::operator==(const DepthPlane& o) const {
 
 namespace {
 
-// Back faces of closed components hide nothing that their component's front
-// faces do not already hide, unless seen through a cap of the near plane's cut
-// (engine/culling.h): they stop being occluders (counted).
+// The near plane's cut through closed components, on the screen, and the
+// components whose cut it cannot list (a vertex on the plane: the cut passes
+// through corners; a facet cut other than in two points).
+struct NearCut {
+  std::vector<CutSegment> segments;
+  std::vector<char> unlisted;   // per component
+};
+NearCut near_cut(const ScreenScene& ss, const CurveMaker& M, const std::vector<std::int8_t>& zsign,
+                 const ClosedComponents& cc) {
+  NearCut cut;
+  cut.unlisted.assign(ss.facets.size(), 0);
+  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) {
+    if (cc.side[fi] == 0) continue;
+    const int c = cc.component[fi];
+    for (auto id : M.wf.facets[fi].v)
+      if (zsign[M.local[id]] == 0) cut.unlisted[static_cast<std::size_t>(c)] = 1;
+    const auto& ce = M.clip_edges[fi];
+    if (ce.size() == 2) cut.segments.push_back({c, ce[0].xy(), ce[1].xy(), box_of(ce[0]) + box_of(ce[1])});
+    else if (!ce.empty()) cut.unlisted[static_cast<std::size_t>(c)] = 1;
+  }
+  return cut;
+}
+
+// Parity tells the inside of a cap only where the component does not meet
+// itself: facets of the other components stay occluders.
+void keep_where_meeting_itself(std::vector<char>& hidden, const ClosedComponents& cc, const CurveMaker& M) {
+  const std::size_t n = hidden.size();
+  std::vector<int> slot(n, -1);   // per component with a hidden facet: its list
+  std::vector<std::vector<int>> members;
+  for (std::size_t fi = 0; fi < n; ++fi) {
+    const auto c = static_cast<std::size_t>(cc.component[fi]);
+    if (hidden[fi] && slot[c] < 0) {
+      slot[c] = static_cast<int>(members.size());
+      members.emplace_back();
+    }
+  }
+  for (std::size_t fi = 0; fi < n; ++fi)
+    if (const int k = slot[static_cast<std::size_t>(cc.component[fi])]; k >= 0)
+      members[static_cast<std::size_t>(k)].push_back(static_cast<int>(fi));
+  for (const auto& m : members)
+    if (meets_itself(*M.scene, M.wf, m))
+      for (int fi : m) hidden[static_cast<std::size_t>(fi)] = 0;
+}
+
+// Closed components hide their own faces (engine/culling.h, engine/cap_inside.h):
+// where every ray towards a facet starts outside the solid (its image apart from
+// the caps of the near plane's cut), the facets seen from behind; where every
+// one starts inside (its image within a cap), the facets seen from the front.
+// They stop being occluders (counted).
 void cull_back_faces(ScreenScene& ss, const CurveMaker& M, const View& view, const std::vector<std::int8_t>& zsign,
                      const ClosedComponents& cc, Stats& stats) {
+  const std::size_t n = ss.facets.size();
   std::vector<NearCap> caps;
   if (view.perspective) {
     NearPlane np;
@@ -544,22 +593,45 @@ void cull_back_faces(ScreenScene& ss, const CurveMaker& M, const View& view, con
     np.on_plane = [&](std::uint32_t id) { return box_of(M.near_image(M.world(id))); };
     caps = near_caps(M.wf, M.pieces, cc, np);
   }
-  std::vector<CGAL::Bbox_2> facet_box(ss.facets.size());
-  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) facet_box[fi] = ss.facets[fi].box;
+  std::vector<CGAL::Bbox_2> facet_box(n);
+  for (std::size_t fi = 0; fi < n; ++fi) facet_box[fi] = ss.facets[fi].box;
   const std::vector<char> hidden_back = hidden_when_back_facing(cc, caps, facet_box);
-  std::int64_t back = 0;
-  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) {
+  // Facing the eye, inward from the solid's side of a cap (only a perspective
+  // view's near plane cuts).
+  auto seen_from_inside = [&](std::size_t fi) {
+    const Facet& f = ss.facets[fi];
+    return (cc.side[fi] > 0 && f.facing == Facing::Front) || (cc.side[fi] < 0 && f.facing == Facing::Back);
+  };
+  std::vector<char> hidden_front(n, 0);
+  if (!caps.empty()) {
+    const NearCut cut = near_cut(ss, M, zsign, cc);
+    std::vector<char> candidate(n, 0);
+    std::vector<const P2*> point(n, nullptr);
+    for (std::size_t fi = 0; fi < n; ++fi) {
+      if (!ss.facets[fi].occluder || !seen_from_inside(fi) || cut.unlisted[static_cast<std::size_t>(cc.component[fi])])
+        continue;
+      candidate[fi] = 1;
+      point[fi] = &ss.facets[fi].v[0].xy();
+    }
+    hidden_front = inside_caps(cc, cut.segments, candidate, facet_box, point);
+    keep_where_meeting_itself(hidden_front, cc, M);
+  }
+  std::int64_t back = 0, front = 0;
+  for (std::size_t fi = 0; fi < n; ++fi) {
     Facet& f = ss.facets[fi];
-    const int side = cc.side[fi];
-    if (!f.occluder || !hidden_back[fi]) continue;
-    if ((side > 0 && f.facing == Facing::Back) || (side < 0 && f.facing == Facing::Front)) {
+    if (!f.occluder || cc.side[fi] == 0) continue;
+    if (seen_from_inside(fi)) {
+      if (!hidden_front[fi]) continue;
+      f.occluder = false;
+      ++front;
+    } else if (hidden_back[fi]) {
       f.occluder = false;
       ++back;
     }
   }
   stats.count("culled_back_faces", back);
+  stats.count("culled_front_faces_in_caps", front);
   stats.count("near_plane_caps", static_cast<std::int64_t>(caps.size()));
-
 }
 
 }  // namespace
