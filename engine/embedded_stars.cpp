@@ -165,11 +165,11 @@ bool embedded(const LinkEdge* e, std::size_t n, std::uint32_t v, const ImageHeig
 
 }  // namespace
 
-EmbeddedStars::EmbeddedStars(const ScreenScene& ss, int threads) {
+EmbeddedStars::EmbeddedStars(const ScreenScene& ss, int threads, bool wanted) {
   // (Canonical ids index the input's vertices.)
   const std::size_t vertices = ss.world ? ss.world->size() : 0;
   embedded_.assign(vertices, 0);
-  if (vertices == 0) return;
+  if (vertices == 0 || !wanted) return;
   const Links links = links_of(triangles_of(ss, threads), vertices);
   const ImageHeights heights(ss, threads);
   parallel_chunks(static_cast<int>(vertices), 4096, threads, [&](int, Chunk r) {

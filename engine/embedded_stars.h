@@ -17,8 +17,9 @@ VISMAP_KERNEL_BEGIN
 
 class EmbeddedStars {
  public:
-  // The stars of the occluding facets' corners, on `threads` threads.
-  EmbeddedStars(const ScreenScene& ss, int threads);
+  // The stars of the occluding facets' corners, on `threads` threads; none
+  // (every star taken as not embedded) unless `wanted`.
+  EmbeddedStars(const ScreenScene& ss, int threads, bool wanted = true);
   // Whether the star of canonical vertex v (not -1) is embedded: then two of
   // its facets that have no other corner in common do not pierce each other.
   bool at(VertexId v) const { return embedded_[static_cast<std::size_t>(v)] != 0; }

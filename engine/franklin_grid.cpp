@@ -881,6 +881,7 @@ bool first_common_cell(const Listing& l, int a, int b, int ix, int iy) {
 // the facets themselves are then never read).
 struct Member {
   int fi, face;
+  int solid;                        // ScreenScene::solid, or -1
   CGAL::Bbox_2 box;
   double zlo, zhi;
   std::array<VertexId, 3> corner;   // a triangle's, else corner[0] = kNotTriangle
@@ -900,7 +901,8 @@ void crossings_in_cell(const Grid& g, const ScreenScene& ss, const Listing& l, c
   members.clear();
   auto add = [&](int fi) {
     const Facet& f = ss.facets[fi];
-    Member m{fi, f.face, f.box, f.zlo, f.zhi, {Member::kNotTriangle, -1, -1}};
+    const int solid = ss.solid.empty() ? -1 : ss.solid[static_cast<std::size_t>(fi)];
+    Member m{fi, f.face, solid, f.box, f.zlo, f.zhi, {Member::kNotTriangle, -1, -1}};
     if (f.id.size() == 3) std::copy(f.id.begin(), f.id.end(), m.corner.begin());
     members.push_back(m);
   };
@@ -914,7 +916,8 @@ void crossings_in_cell(const Grid& g, const ScreenScene& ss, const Listing& l, c
   for (std::size_t i = 0; i < members.size(); ++i)
     for (std::size_t j = i + 1; j < members.size() && members[j].zlo <= members[i].zhi; ++j) {
       const Member &m = members[i], &n = members[j];
-      if (m.fi == n.fi || m.face == n.face || !CGAL::do_overlap(m.box, n.box)) continue;
+      if (m.fi == n.fi || m.face == n.face || (m.solid >= 0 && m.solid == n.solid) || !CGAL::do_overlap(m.box, n.box))
+        continue;
       const bool triangles = m.corner[0] != Member::kNotTriangle && n.corner[0] != Member::kNotTriangle;
       if (triangles && triangles_apart(m.corner.data(), n.corner.data(), stars)) continue;
       const int fa = std::min(m.fi, n.fi), fb = std::max(m.fi, n.fi);
@@ -931,11 +934,15 @@ void crossings_in_cell(const Grid& g, const ScreenScene& ss, const Listing& l, c
 
 // Faces that pierce each other: an intersection line for every pair of facets of
 // different faces that some cell lists together and that cross inside both
-// projections. Rows of cells in parallel, each pair tested in the first cell
+// projections (not two of one solid that does not meet itself). Rows of cells in parallel, each pair tested in the first cell
 // that lists both; the lines are appended in the order of their pairs.
 void add_intersection_lines(const Grid& g, ScreenScene& ss, int threads, Stats& stats) {
   const Listing l = listing_of(g, ss, threads);
-  const EmbeddedStars stars(ss, threads);
+  // (Stars settle pairs of neighbours; within one solid there are none to settle.)
+  bool all_solid = !ss.solid.empty();
+  for (std::size_t fi = 0; fi < ss.facets.size() && all_solid; ++fi)
+    all_solid = !ss.facets[fi].occluder || ss.solid[fi] >= 0;
+  const EmbeddedStars stars(ss, threads, !all_solid);
   std::vector<std::vector<Crossing>> by_row(static_cast<std::size_t>(g.Y.cells()));
   std::vector<std::int64_t> tested_by_row(by_row.size(), 0);
   parallel_for(g.Y.cells(), threads, [&](int iy) {

@@ -552,8 +552,10 @@ NearCut near_cut(const ScreenScene& ss, const CurveMaker& M, const std::vector<s
 }
 
 // Parity tells the inside of a cap only where the component does not meet
-// itself: facets of the other components stay occluders.
-void keep_where_meeting_itself(std::vector<char>& hidden, const ClosedComponents& cc, const CurveMaker& M) {
+// itself: facets of the other components stay occluders. The facets of those
+// that do not are marked as parts of a solid (ScreenScene::solid).
+void keep_where_meeting_itself(std::vector<char>& hidden, const ClosedComponents& cc, const CurveMaker& M,
+                               std::vector<int>& solid) {
   const std::size_t n = hidden.size();
   std::vector<int> slot(n, -1);   // per component with a hidden facet: its list
   std::vector<std::vector<int>> members;
@@ -567,9 +569,13 @@ void keep_where_meeting_itself(std::vector<char>& hidden, const ClosedComponents
   for (std::size_t fi = 0; fi < n; ++fi)
     if (const int k = slot[static_cast<std::size_t>(cc.component[fi])]; k >= 0)
       members[static_cast<std::size_t>(k)].push_back(static_cast<int>(fi));
-  for (const auto& m : members)
-    if (meets_itself(*M.scene, M.wf, m))
-      for (int fi : m) hidden[static_cast<std::size_t>(fi)] = 0;
+  for (const auto& m : members) {
+    const bool meets = meets_itself(*M.scene, M.wf, m);
+    for (int fi : m) {
+      if (meets) hidden[static_cast<std::size_t>(fi)] = 0;
+      else solid[static_cast<std::size_t>(fi)] = cc.component[static_cast<std::size_t>(fi)];
+    }
+  }
 }
 
 // Closed components hide their own faces (engine/culling.h, engine/cap_inside.h):
@@ -595,6 +601,7 @@ void cull_back_faces(ScreenScene& ss, const CurveMaker& M, const View& view, con
   }
   std::vector<CGAL::Bbox_2> facet_box(n);
   for (std::size_t fi = 0; fi < n; ++fi) facet_box[fi] = ss.facets[fi].box;
+  ss.solid.assign(n, -1);
   const std::vector<char> hidden_back = hidden_when_back_facing(cc, caps, facet_box);
   // Facing the eye, inward from the solid's side of a cap (only a perspective
   // view's near plane cuts).
@@ -614,7 +621,7 @@ void cull_back_faces(ScreenScene& ss, const CurveMaker& M, const View& view, con
       point[fi] = &ss.facets[fi].v[0].xy();
     }
     hidden_front = inside_caps(cc, cut.segments, candidate, facet_box, point);
-    keep_where_meeting_itself(hidden_front, cc, M);
+    keep_where_meeting_itself(hidden_front, cc, M, ss.solid);
   }
   std::int64_t back = 0, front = 0;
   for (std::size_t fi = 0; fi < n; ++fi) {

@@ -148,6 +148,10 @@ struct ScreenScene {
   std::shared_ptr<const ExactSource> exact;   // (first: every lazy leaf refers to it)
   std::vector<P3> images;        // the used vertices' images (before the facets: they refer to them)
   std::vector<Facet> facets;
+  // Per facet: its closed component where that is known not to meet itself
+  // (engine/self_contact.h; tested where a near-plane cap culls from inside),
+  // else -1. Two facets of one such solid never pierce each other.
+  std::vector<int> solid;
   std::vector<Curve> curves;
   // Curve end points that are not vertex images (near-plane cuts, intersection-
   // line ends), where the curves point: lists that are only appended to, so
