@@ -51,6 +51,9 @@ inline int orientation(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& 
     if (d > eps) return 1;
     if (d < -eps) return -1;
   }
+  // All four points in one coordinate plane (a column of zero differences: faces
+  // of axis-aligned boxes, a mesh's flat base): zero, with no arithmetic.
+  if (mx == 0) return 0;
   return det<CGAL::Mpzf>(o, a, b, c).sign();
 }
 
