@@ -794,17 +794,39 @@ namespace {
 
 // Where each facet is listed, for the search of pairs: the cells of its box,
 // whether it is listed in every one of them (not hidden behind a blocker in
-// any), and for a facet that is not, in which: a bit per cell of its box.
+// any), and for a facet that is not, in which: a bit per cell of its box, or
+// where its box holds more than kDenseCells cells (a facet beside the near
+// plane in perspective spans the screen, and is listed in few of its box's
+// cells: a sphere of 10^6 triangles seen from inside took 14 GB of such
+// bits), the list of those cells.
 struct Listing {
+  static constexpr long kDenseCells = 1 << 10;
   const CellRange* range = nullptr;   // per facet (Grid::facet_range)
+  int columns = 0;                    // the grid's (cell (x, y) is y * columns + x)
   std::vector<char> complete;
   std::vector<std::size_t> first;   // an incomplete facet's bits: rows of `words` words from bits[first]
-  std::vector<int> words;
+  std::vector<int> words;           // (0 for a facet whose cells are listed instead)
   std::vector<std::uint64_t> bits;
+  std::vector<std::size_t> cells_first;   // a listed facet's cells: cells[cells_first[f] .. cells_first[f + 1]),
+  std::vector<std::uint32_t> cells;       // ascending
 
-  // Where facet f is listed among the 64 cells of row y from column x on (bit
-  // k: column x + k; x within f's box). Beyond the box's last column: zeros,
-  // or ones for a complete facet (the caller masks them).
+  bool listed_by_cell(int f) const { return !complete[f] && words[f] == 0; }
+  std::size_t count(int f) const { return cells_first[f + 1] - cells_first[f]; }
+
+  // Whether facet f is listed in cell (x, y) of its box.
+  bool listed(int f, int x, int y) const {
+    if (complete[f]) return true;
+    if (listed_by_cell(f)) {
+      const auto from = cells.begin() + static_cast<std::ptrdiff_t>(cells_first[f]);
+      const auto to = cells.begin() + static_cast<std::ptrdiff_t>(cells_first[f + 1]);
+      return std::binary_search(from, to, static_cast<std::uint32_t>(y * columns + x));
+    }
+    return (listed64(f, x, y) & 1) != 0;
+  }
+
+  // Where facet f (not listed by cell) is listed among the 64 cells of row y
+  // from column x on (bit k: column x + k; x within f's box). Beyond the box's
+  // last column: zeros, or ones for a complete facet (the caller masks them).
   std::uint64_t listed64(int f, int x, int y) const {
     if (complete[f]) return ~std::uint64_t(0);
     const CellRange& r = range[f];
@@ -820,6 +842,7 @@ Listing listing_of(const Grid& g, const ScreenScene& ss, int threads) {
   const int nf = static_cast<int>(ss.facets.size());
   Listing l;
   l.range = g.facet_range.data();
+  l.columns = g.X.cells();
   std::vector<int> listed(ss.facets.size(), 0);
   for (const Cell& cell : g.cells) {
     for (int fi : cell.facets) ++listed[fi];
@@ -828,14 +851,31 @@ Listing listing_of(const Grid& g, const ScreenScene& ss, int threads) {
   l.complete.resize(ss.facets.size());
   l.first.assign(ss.facets.size(), 0);
   l.words.assign(ss.facets.size(), 0);
+  l.cells_first.assign(ss.facets.size() + 1, 0);
   std::size_t nbits = 0;
   for (int fi = 0; fi < nf; ++fi) {
     const CellRange& r = l.range[fi];
-    l.complete[fi] = listed[fi] == (r.x1 - r.x0 + 1) * (r.y1 - r.y0 + 1);
+    const long box_cells = static_cast<long>(r.x1 - r.x0 + 1) * (r.y1 - r.y0 + 1);
+    l.complete[fi] = listed[fi] == box_cells;
+    l.cells_first[fi + 1] = l.cells_first[fi];
     if (l.complete[fi]) continue;
+    if (box_cells > Listing::kDenseCells) {
+      l.cells_first[fi + 1] += static_cast<std::size_t>(listed[fi]);
+      continue;
+    }
     l.first[fi] = nbits;
     l.words[fi] = (r.x1 - r.x0 + 64) / 64;
     nbits += static_cast<std::size_t>(l.words[fi]) * static_cast<std::size_t>(r.y1 - r.y0 + 1);
+  }
+  // The cells of the facets listed by cell, in row order (ascending).
+  l.cells.resize(l.cells_first[ss.facets.size()]);
+  std::vector<std::size_t> fill(l.cells_first.begin(), l.cells_first.end() - 1);
+  for (std::size_t c = 0; c < g.cells.size(); ++c) {
+    auto add = [&](int fi) {
+      if (l.listed_by_cell(fi)) l.cells[fill[static_cast<std::size_t>(fi)]++] = static_cast<std::uint32_t>(c);
+    };
+    for (int fi : g.cells[c].facets) add(fi);
+    if (g.cells[c].blocker >= 0) add(g.cells[c].blocker);
   }
   // The bits, rows of cells in parallel (a row of cells sets only its own row of
   // each facet's bits).
@@ -845,7 +885,7 @@ Listing listing_of(const Grid& g, const ScreenScene& ss, int threads) {
       const Cell& cell = g.at(ix, iy);
       auto mark = [&](int fi) {
         const CellRange& r = l.range[fi];
-        if (l.complete[fi] || ix < r.x0 || ix > r.x1 || iy < r.y0 || iy > r.y1) return;
+        if (l.complete[fi] || l.listed_by_cell(fi) || ix < r.x0 || ix > r.x1 || iy < r.y0 || iy > r.y1) return;
         const int col = ix - r.x0;
         l.bits[l.first[fi] + static_cast<std::size_t>(iy - r.y0) * static_cast<std::size_t>(l.words[fi]) +
                static_cast<std::size_t>(col / 64)] |= std::uint64_t(1) << (col % 64);
@@ -859,12 +899,25 @@ Listing listing_of(const Grid& g, const ScreenScene& ss, int threads) {
 
 // Whether cell (ix, iy), which lists facets a and b, is the first in row order
 // to list both: each pair is tested once, there. Where both are listed in every
-// cell of their boxes, that is the first cell the boxes share; else the cells
-// of their common box before (ix, iy) are looked at, 64 at a time.
+// cell of their boxes, that is the first cell the boxes share; where one is
+// listed by cell, its cells before (ix, iy) in the common box are looked at;
+// else the common box's cells before (ix, iy), 64 at a time.
 bool first_common_cell(const Listing& l, int a, int b, int ix, int iy) {
   const CellRange &ra = l.range[a], &rb = l.range[b];
   const int x0 = std::max(ra.x0, rb.x0), x1 = std::min(ra.x1, rb.x1), y0 = std::max(ra.y0, rb.y0);
   if (l.complete[a] && l.complete[b]) return ix == x0 && iy == y0;
+  if (l.listed_by_cell(a) || l.listed_by_cell(b)) {
+    // (The one with fewer cells, when both are.)
+    const bool by_a = l.listed_by_cell(a) && (!l.listed_by_cell(b) || l.count(a) <= l.count(b));
+    const int s = by_a ? a : b, o = by_a ? b : a;
+    const auto here = static_cast<std::uint32_t>(iy * l.columns + ix);
+    for (std::size_t k = l.cells_first[s]; k < l.cells_first[s + 1] && l.cells[k] < here; ++k) {
+      const int x = static_cast<int>(l.cells[k] % static_cast<std::uint32_t>(l.columns));
+      const int y = static_cast<int>(l.cells[k] / static_cast<std::uint32_t>(l.columns));
+      if (x >= x0 && x <= x1 && y >= y0 && l.listed(o, x, y)) return false;
+    }
+    return true;
+  }
   for (int y = y0; y <= iy; ++y) {
     const int end = y < iy ? x1 : ix - 1;   // (in row iy: the columns before ix)
     for (int x = x0; x <= end; x += 64) {
