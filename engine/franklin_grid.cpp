@@ -907,14 +907,18 @@ bool first_common_cell(const Listing& l, int a, int b, int ix, int iy) {
   const int x0 = std::max(ra.x0, rb.x0), x1 = std::min(ra.x1, rb.x1), y0 = std::max(ra.y0, rb.y0);
   if (l.complete[a] && l.complete[b]) return ix == x0 && iy == y0;
   if (l.listed_by_cell(a) || l.listed_by_cell(b)) {
-    // (The one with fewer cells, when both are.)
+    // Row by row, the listed one's cells within the common box (the one with
+    // fewer cells, when both are).
     const bool by_a = l.listed_by_cell(a) && (!l.listed_by_cell(b) || l.count(a) <= l.count(b));
     const int s = by_a ? a : b, o = by_a ? b : a;
-    const auto here = static_cast<std::uint32_t>(iy * l.columns + ix);
-    for (std::size_t k = l.cells_first[s]; k < l.cells_first[s + 1] && l.cells[k] < here; ++k) {
-      const int x = static_cast<int>(l.cells[k] % static_cast<std::uint32_t>(l.columns));
-      const int y = static_cast<int>(l.cells[k] / static_cast<std::uint32_t>(l.columns));
-      if (x >= x0 && x <= x1 && y >= y0 && l.listed(o, x, y)) return false;
+    const std::uint32_t* first = l.cells.data() + l.cells_first[s];
+    const std::uint32_t* last = l.cells.data() + l.cells_first[s + 1];
+    for (int y = y0; y <= iy; ++y) {
+      const int end = y < iy ? x1 : ix - 1;   // (in row iy: the columns before ix)
+      const auto row = static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(l.columns);
+      for (const std::uint32_t* c = std::lower_bound(first, last, row + static_cast<std::uint32_t>(x0));
+           c != last && *c <= row + static_cast<std::uint32_t>(end) && end >= x0; ++c)
+        if (l.listed(o, static_cast<int>(*c - row), y)) return false;
     }
     return true;
   }

@@ -14,8 +14,8 @@
 #include "engine/engine_run.h"
 #include "engine/lazy_leaves.h"
 #include "engine/morton.h"
-#include "engine/self_contact.h"
 #include "engine/parallel.h"
+#include "engine/self_contact.h"
 #include "engine/world_exact.h"
 
 namespace vismap::engine {
@@ -583,7 +583,7 @@ void keep_where_meeting_itself(std::vector<char>& hidden, const ClosedComponents
 // the caps of the near plane's cut), the facets seen from behind; where every
 // one starts inside (its image within a cap), the facets seen from the front.
 // They stop being occluders (counted).
-void cull_back_faces(ScreenScene& ss, const CurveMaker& M, const View& view, const std::vector<std::int8_t>& zsign,
+void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& view, const std::vector<std::int8_t>& zsign,
                      const ClosedComponents& cc, Stats& stats) {
   const std::size_t n = ss.facets.size();
   std::vector<NearCap> caps;
@@ -603,9 +603,10 @@ void cull_back_faces(ScreenScene& ss, const CurveMaker& M, const View& view, con
   for (std::size_t fi = 0; fi < n; ++fi) facet_box[fi] = ss.facets[fi].box;
   ss.solid.assign(n, -1);
   const std::vector<char> hidden_back = hidden_when_back_facing(cc, caps, facet_box);
-  // Facing the eye, inward from the solid's side of a cap (only a perspective
-  // view's near plane cuts).
-  auto seen_from_inside = [&](std::size_t fi) {
+  // Seen from the solid's outside (the front of an outward-oriented component's
+  // face, the back of an inward-oriented one's): hidden where every ray towards
+  // it starts inside a cap (only a perspective view's near plane cuts).
+  auto seen_from_outside = [&](std::size_t fi) {
     const Facet& f = ss.facets[fi];
     return (cc.side[fi] > 0 && f.facing == Facing::Front) || (cc.side[fi] < 0 && f.facing == Facing::Back);
   };
@@ -615,7 +616,7 @@ void cull_back_faces(ScreenScene& ss, const CurveMaker& M, const View& view, con
     std::vector<char> candidate(n, 0);
     std::vector<const P2*> point(n, nullptr);
     for (std::size_t fi = 0; fi < n; ++fi) {
-      if (!ss.facets[fi].occluder || !seen_from_inside(fi) || cut.unlisted[static_cast<std::size_t>(cc.component[fi])])
+      if (!ss.facets[fi].occluder || !seen_from_outside(fi) || cut.unlisted[static_cast<std::size_t>(cc.component[fi])])
         continue;
       candidate[fi] = 1;
       point[fi] = &ss.facets[fi].v[0].xy();
@@ -627,7 +628,7 @@ void cull_back_faces(ScreenScene& ss, const CurveMaker& M, const View& view, con
   for (std::size_t fi = 0; fi < n; ++fi) {
     Facet& f = ss.facets[fi];
     if (!f.occluder || cc.side[fi] == 0) continue;
-    if (seen_from_inside(fi)) {
+    if (seen_from_outside(fi)) {
       if (!hidden_front[fi]) continue;
       f.occluder = false;
       ++front;
@@ -847,7 +848,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   stats.count("culled_outside_view", outside);
   stats.count("culled_edge_on", edge_on);
 
-  if (cull) cull_back_faces(ss, M, view, zsign, closed, stats);
+  if (cull) cull_by_closed_solids(ss, M, view, zsign, closed, stats);
 
   M.look.resize(ss.facets.size());
   for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) {
