@@ -958,8 +958,7 @@ void crossings_in_cell(const Grid& g, const ScreenScene& ss, const Listing& l, c
   members.clear();
   auto add = [&](int fi) {
     const Facet& f = ss.facets[fi];
-    const int solid = ss.solid.empty() ? -1 : ss.solid[static_cast<std::size_t>(fi)];
-    Member m{fi, f.face, solid, f.box, f.zlo, f.zhi, {Member::kNotTriangle, -1, -1}};
+    Member m{fi, f.face, solid_of(ss, fi), f.box, f.zlo, f.zhi, {Member::kNotTriangle, -1, -1}};
     if (f.id.size() == 3) std::copy(f.id.begin(), f.id.end(), m.corner.begin());
     members.push_back(m);
   };
@@ -991,15 +990,12 @@ void crossings_in_cell(const Grid& g, const ScreenScene& ss, const Listing& l, c
 
 // Faces that pierce each other: an intersection line for every pair of facets of
 // different faces that some cell lists together and that cross inside both
-// projections (not two of one solid that does not meet itself). Rows of cells in parallel, each pair tested in the first cell
-// that lists both; the lines are appended in the order of their pairs.
+// projections (never two of one solid that does not meet itself). Rows of cells
+// in parallel, each pair tested in the first cell that lists both; the lines
+// are appended in the order of their pairs.
 void add_intersection_lines(const Grid& g, ScreenScene& ss, int threads, Stats& stats) {
   const Listing l = listing_of(g, ss, threads);
-  // (Stars settle pairs of neighbours; within one solid there are none to settle.)
-  bool all_solid = !ss.solid.empty();
-  for (std::size_t fi = 0; fi < ss.facets.size() && all_solid; ++fi)
-    all_solid = !ss.facets[fi].occluder || ss.solid[fi] >= 0;
-  const EmbeddedStars stars(ss, threads, !all_solid);
+  const EmbeddedStars stars(ss, threads, !occluders_all_in_solids(ss));
   std::vector<std::vector<Crossing>> by_row(static_cast<std::size_t>(g.Y.cells()));
   std::vector<std::int64_t> tested_by_row(by_row.size(), 0);
   parallel_for(g.Y.cells(), threads, [&](int iy) {

@@ -351,16 +351,12 @@ void add_piercing_lines(ScreenScene& ss, Stats& stats) {
   std::int64_t tested = 0, found = 0;
   std::vector<Curve> lines;
   std::deque<P3>& line_ends = ss.ends.emplace_back();
-  // (Two facets of one solid that does not meet itself never pierce each other:
-  // ScreenScene::solid. Stars settle neighbours, of which a solid has no others.)
-  auto solid = [&](int fi) { return ss.solid.empty() ? -1 : ss.solid[static_cast<std::size_t>(fi)]; };
-  bool all_solid = !ss.solid.empty();
-  for (int fi : occ) all_solid = all_solid && solid(fi) >= 0;
-  const EmbeddedStars stars(ss, 1, !all_solid);
+  const EmbeddedStars stars(ss, 1, !occluders_all_in_solids(ss));
   BoxGrid(boxes).pairs([&](int i, int j) {
     const int fa = occ[i], fb = occ[j];
     const Facet &A = ss.facets[fa], &B = ss.facets[fb];
-    if (solid(fa) >= 0 && solid(fa) == solid(fb)) return;
+    // (Two facets of one solid that does not meet itself never pierce each other.)
+    if (solid_of(ss, fa) >= 0 && solid_of(ss, fa) == solid_of(ss, fb)) return;
     // (Franklin's test of a pair, franklin_grid.h: neighbours on a mesh are told
     // by their shared edge or corner, or on doubles in the world.)
     if (A.face == B.face || cannot_pierce(A, B, stars)) return;

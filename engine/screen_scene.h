@@ -166,6 +166,16 @@ struct ScreenScene {
   std::shared_ptr<const CurveMaker> maker;
 };
 
+// Facet fi's solid (ScreenScene::solid), or -1; and whether every occluder is in
+// one (then the piercing searches have no pair of neighbours to settle).
+inline int solid_of(const ScreenScene& ss, int fi) { return ss.solid.empty() ? -1 : ss.solid[static_cast<std::size_t>(fi)]; }
+inline bool occluders_all_in_solids(const ScreenScene& ss) {
+  if (ss.solid.empty()) return false;
+  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi)
+    if (ss.facets[fi].occluder && ss.solid[fi] < 0) return false;
+  return true;
+}
+
 // With `latent`, curves that are not drawn are left latent (a lines-only drawing
 // needs only those near a drawn one: most of a smooth mesh's edges are not).
 // Without `cull`, back faces of closed solids stay occluders and their edges
