@@ -197,6 +197,59 @@ struct P3 {
   const P2& xy() const { return p; }
 };
 
+// A copy of a constructed point whose intervals never narrow. CGAL refines a
+// lazy construction's interval once its exact value is made; for a point that
+// threads share (an intersection line's end, made in one thread and cut and
+// classified in others) which thread made it first would then decide which
+// later filters succeed, and the counts in the JSON must not depend on the
+// thread count. The copy keeps the interval it was made with and takes its
+// exact value from the original, on demand. (Precomputing the exact values
+// instead costs ~20% of a perspective view of a soup of triangles.)
+#ifdef VISMAP_FLOAT_KERNEL
+inline P3 frozen(const P3& a) { return a; }
+#else
+namespace frozen_detail {
+class Number final : public CGAL::Lazy_exact_nt_rep<mpq_class> {
+ public:
+  explicit Number(const FT& x) : CGAL::Lazy_exact_nt_rep<mpq_class>(x.approx()), x_(x) {}
+  void update_exact() const override {
+    auto* pet = new Indirect(CGAL::exact(x_));
+    this->keep_at(pet);
+    this->set_ptr(pet);
+    x_ = FT();   // (the original's DAG is not needed any more)
+  }
+ private:
+  mutable FT x_;
+};
+using PointRep = P2::Rep::Self_rep;
+class Point final : public PointRep {
+ public:
+  explicit Point(const P2& p) : PointRep(p.approx()), p_(p) {}
+  void update_exact() const override {
+    auto* pet = new PointRep::Indirect(CGAL::exact(p_));
+    this->keep_at(pet);
+    this->set_ptr(pet);
+    p_ = P2();
+  }
+ private:
+  mutable P2 p_;
+};
+}  // namespace frozen_detail
+inline FT frozen(const FT& x) { return x.approx().is_point() ? x : FT(new frozen_detail::Number(x)); }
+inline P2 frozen(const P2& p) {
+  if (p.approx().x().is_point() && p.approx().y().is_point()) return p;
+  return P2(P2::Rep(new frozen_detail::Point(p)));
+}
+inline P3 frozen(const P3& a) {
+  P3 r;
+  r.x = frozen(a.x);
+  r.y = frozen(a.y);
+  r.z = frozen(a.z);
+  r.p = frozen(a.p);
+  return r;
+}
+#endif
+
 // Depth at screen point p on the line from s to t (depth is affine along a
 // screen line), interpolated along the line's dominant screen axis.
 inline FT depth_along(const P3& s, const P3& t, const P2& p) {

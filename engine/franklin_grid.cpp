@@ -740,13 +740,15 @@ bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3
 
 Curve crossing_curve(const Facet& A, const Facet& B, int fa, int fb, const P2& p, const P2& q, std::deque<P3>& ends) {
   P3 s(p, A.depth_at(p)), t(q, A.depth_at(q));
-  if (A.may_cross_at_diagonal() || B.may_cross_at_diagonal())
+  if (A.may_cross_at_diagonal() || B.may_cross_at_diagonal()) {
     for (const P3* e : {&s, &t}) {
       to_mpq(e->x);
       to_mpq(e->y);
       to_mpq(e->z);
     }
-  return intersection_curve(s, t, fa, fb, A.face, B.face, ends);
+    return intersection_curve(s, t, fa, fb, A.face, B.face, ends);
+  }
+  return intersection_curve(frozen(s), frozen(t), fa, fb, A.face, B.face, ends);
 }
 
 namespace {

@@ -77,7 +77,8 @@ bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3
 // their exact values are computed here, before the threads share them. (A lazy number's
 // interval narrows once its exact value is known, so which thread computed it
 // first would change which later predicates the filter settles, and the counts
-// in the JSON must not depend on the thread count.)
+// in the JSON must not depend on the thread count.) Elsewhere its ends are
+// frozen copies (exact_kernel.h), whose intervals do not narrow.
 Curve crossing_curve(const Facet& A, const Facet& B, int fa, int fb, const P2& p, const P2& q, std::deque<P3>& ends);
 // Where segments a-b and c-d cross (they do, properly): one lazy node, whose
 // interval is the common part of both segments' (a crossing on an axis-parallel
