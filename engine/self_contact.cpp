@@ -20,66 +20,23 @@ using Point = K::Point_3;
 
 struct Triangle {
   std::array<std::uint32_t, 3> v;   // canonical vertex ids
+  std::array<const Vec3*, 3> corner;
   int facet;
-  std::array<Vec3, 3> corner;       // (copies: a pair's tests read both triangles' corners)
 };
 
 // The fans of the facets, without the triangles whose corners are collinear
 // (those lie on their facet's border, which its other triangles hold).
 std::vector<Triangle> fans(const Scene& scene, const WorldFacets& wf, const std::vector<int>& facets) {
   std::vector<Triangle> out;
-  out.reserve(facets.size());
   for (int fi : facets) {
     const auto& v = wf.facets[static_cast<std::size_t>(fi)].v;
-    for (std::size_t k = 1; k + 1 < v.size(); ++k) {
-      const Vec3 &a = scene.vertices[v[0]], &b = scene.vertices[v[k]], &c = scene.vertices[v[k + 1]];
-      if (!world::collinear(a, b, c)) out.push_back({{v[0], v[k], v[k + 1]}, fi, {a, b, c}});
-    }
+    for (std::size_t k = 1; k + 1 < v.size(); ++k)
+      if (!world::collinear(scene.vertices[v[0]], scene.vertices[v[k]], scene.vertices[v[k + 1]]))
+        out.push_back({{v[0], v[k], v[k + 1]},
+                       {&scene.vertices[v[0]], &scene.vertices[v[k]], &scene.vertices[v[k + 1]]},
+                       fi});
   }
   return out;
-}
-
-// Position of a point of the box `all` along a 3D Morton (Z-order) curve, 21 bits per axis.
-std::uint64_t morton3(const CGAL::Bbox_3& all, double x, double y, double z) {
-  auto spread = [](std::uint64_t t) {
-    t &= 0x1fffff;
-    t = (t | (t << 32)) & 0x1f00000000ffffULL;
-    t = (t | (t << 16)) & 0x1f0000ff0000ffULL;
-    t = (t | (t << 8)) & 0x100f00f00f00f00fULL;
-    t = (t | (t << 4)) & 0x10c30c30c30c30c3ULL;
-    return (t | (t << 2)) & 0x1249249249249249ULL;
-  };
-  auto q = [](double t, double lo, double hi) {
-    const double u = hi > lo ? (t - lo) / (hi - lo) : 0;
-    return static_cast<std::uint64_t>((u > 0 ? (u < 1 ? u : 1) : 0) * 2097151.0);
-  };
-  return spread(q(x, all.xmin(), all.xmax())) | (spread(q(y, all.ymin(), all.ymax())) << 1) |
-         (spread(q(z, all.zmin(), all.zmax())) << 2);
-}
-
-CGAL::Bbox_3 box_of(const Triangle& t) {
-  CGAL::Bbox_3 b;
-  for (const Vec3& p : t.corner) b += CGAL::Bbox_3(p.x, p.y, p.z, p.x, p.y, p.z);
-  return b;
-}
-
-// The triangles in Z-order of their boxes' centres: the pair search takes
-// neighbours in space together, and then finds them together in memory.
-void sort_in_space(std::vector<Triangle>& tris) {
-  if (tris.empty()) return;
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> key(tris.size());
-  CGAL::Bbox_3 all;
-  for (const Triangle& t : tris) all += box_of(t);
-  for (std::size_t i = 0; i < tris.size(); ++i) {
-    const CGAL::Bbox_3 b = box_of(tris[i]);
-    key[i] = {morton3(all, 0.5 * (b.xmin() + b.xmax()), 0.5 * (b.ymin() + b.ymax()), 0.5 * (b.zmin() + b.zmax())),
-              static_cast<std::uint32_t>(i)};
-  }
-  std::sort(key.begin(), key.end());
-  std::vector<Triangle> sorted;
-  sorted.reserve(tris.size());
-  for (const auto& k : key) sorted.push_back(tris[k.second]);
-  tris = std::move(sorted);
 }
 
 // Whether every point of a lies strictly on one side of b's plane (but the
@@ -89,7 +46,7 @@ bool off_plane(const Triangle& a, const Triangle& b, const world::PlaneSide& pla
   for (std::size_t k = 0; k < 3; ++k) {
     const auto id = a.v[k];
     if (id == b.v[0] || id == b.v[1] || id == b.v[2]) continue;
-    const int s = plane_b(a.corner[k]);
+    const int s = plane_b(*a.corner[k]);
     if (s == 0 || (side != 0 && s != side)) return false;
     side = s;
   }
@@ -99,7 +56,7 @@ bool off_plane(const Triangle& a, const Triangle& b, const world::PlaneSide& pla
 // Whether triangles a and b, of different facets, meet other than at the
 // corners they share and along the edge between two shared corners.
 bool meet(const Triangle& a, const Triangle& b, const world::PlaneSide& plane_a, const world::PlaneSide& plane_b) {
-  auto P = [](const Vec3& p) { return Point(p.x, p.y, p.z); };
+  auto P = [](const Vec3* p) { return Point(p->x, p->y, p->z); };
   // a's corners shared with b, and where they are in b.
   int shared = 0, ka[3], kb[3];
   for (int i = 0; i < 3; ++i)
@@ -113,8 +70,8 @@ bool meet(const Triangle& a, const Triangle& b, const world::PlaneSide& plane_a,
   if (shared == 2) {
     // Along the shared edge p q: they meet beyond it only folded onto each other,
     // in one plane, on one side.
-    const Vec3& s = b.corner[static_cast<std::size_t>(3 - kb[0] - kb[1])];
-    if (plane_a(s) != 0) return false;
+    const Vec3* s = b.corner[static_cast<std::size_t>(3 - kb[0] - kb[1])];
+    if (plane_a(*s) != 0) return false;
     const auto k = static_cast<std::size_t>(3 - ka[0] - ka[1]);
     return CGAL::coplanar_orientation(P(a.corner[ka[0]]), P(a.corner[ka[1]]), P(a.corner[k]), P(s)) == CGAL::POSITIVE;
   }
@@ -202,15 +159,16 @@ bool any_box_pair(const std::vector<CGAL::Bbox_3>& boxes, F&& f) {
 }  // namespace
 
 bool meets_itself(const Scene& scene, const WorldFacets& wf, const std::vector<int>& facets) {
-  std::vector<Triangle> tris = fans(scene, wf, facets);
-  sort_in_space(tris);
+  const std::vector<Triangle> tris = fans(scene, wf, facets);
   std::vector<CGAL::Bbox_3> boxes;
-  std::vector<world::PlaneSide> planes;   // (each triangle's normal once, for the side tests; tris stays put)
+  std::vector<world::PlaneSide> planes;   // (each triangle's normal once, for the side tests)
   boxes.reserve(tris.size());
   planes.reserve(tris.size());
   for (const Triangle& t : tris) {
-    boxes.push_back(box_of(t));
-    planes.emplace_back(t.corner[0], t.corner[1], t.corner[2]);
+    CGAL::Bbox_3 b;
+    for (const Vec3* p : t.corner) b += CGAL::Bbox_3(p->x, p->y, p->z, p->x, p->y, p->z);
+    boxes.push_back(b);
+    planes.emplace_back(*t.corner[0], *t.corner[1], *t.corner[2]);
   }
   return any_box_pair(boxes, [&](std::uint32_t i, std::uint32_t j) {
     return tris[i].facet != tris[j].facet && meet(tris[i], tris[j], planes[i], planes[j]);
