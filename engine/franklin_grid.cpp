@@ -1299,16 +1299,18 @@ struct Cutter {
     if (!CGAL::do_overlap(C.box, D.box)) return false;
     ++row.pairs;
     const P2 &cs = C.s->xy(), &ct = C.t->xy(), &ds = D.s->xy(), &dt = D.t->xy();   // (references: no handle copied)
-    // End points known to be the same vertex need no predicate.
-    auto same = [](long a, long b) { return a >= 0 && a == b; };
-    const bool shared = same(C.vs, D.vs) || same(C.vs, D.vt) || same(C.vt, D.vs) || same(C.vt, D.vt);
-    if (shared) {
+    // End points known to be the same need no predicate: the same vertex, or
+    // one point (a near-plane cut, made once for all the curves through it).
+    auto same = [](long a, long b, const P2& p, const P2& q) { return a >= 0 ? a == b : b < 0 && same_rep(p, q); };
+    const bool ss_ = same(C.vs, D.vs, cs, ds), st = same(C.vs, D.vt, cs, dt), ts = same(C.vt, D.vs, ct, ds),
+               tt = same(C.vt, D.vt, ct, dt);
+    if (ss_ || st || ts || tt) {
       // C = [p, a], D = [p, b]: they meet only at p unless collinear and pointing the
       // same way; then the longer is cut where the shorter ends. Their depths agree
       // at p, so the depth order cannot change inside the common part.
-      const bool ps = same(C.vs, D.vs) || same(C.vs, D.vt);
+      const bool ps = ss_ || st;
       const P2 &p = ps ? cs : ct, &a = ps ? ct : cs;
-      const P2& b = (same(C.vs, D.vs) || same(C.vt, D.vs)) ? dt : ds;
+      const P2& b = (ss_ || ts) ? dt : ds;
       if (CGAL::orientation(p, a, b) != CGAL::COLLINEAR || !CGAL::is_positive((a - p) * (b - p))) return true;
       row.overlaps.emplace_back(ci, di);
       if (strictly_within(C, b)) cut(ci, b);

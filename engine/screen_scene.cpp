@@ -406,12 +406,29 @@ struct CurveMaker {
     times_pow2(y, k);
     return P3{from_mpq(x), from_mpq(y), FT(0)};
   }
-  // Where edge a-b crosses the near plane Z = 0 (homogeneous Z made for the two
-  // ends here: few edges are cut, and a lazy number per vertex would be 80 bytes).
+  // Where edge a-b (a in front) crosses the near plane Z = 0 (homogeneous Z made
+  // for the two ends here: few edges are cut, and a lazy number per vertex would
+  // be 80 bytes).
   P3 clip_point(std::uint32_t a, std::uint32_t b) const {
+    if (const P3* known = known_clip(a, b)) return *known;
     return near_image(
         cut_at_near(world(a), world(b), projected_number(*exact, a, 2, false), projected_number(*exact, b, 2, false)));
   }
+  // The cut points of the facets' edges, each made once (make_clips): the two
+  // facets of an edge and its curve share one point, so that the curves meeting
+  // there (the edge's, the facets' near-plane cuts) know it by identity (GMP made
+  // it; comparing equal values would take it again), by key (lower id, higher id).
+  std::vector<std::pair<std::uint64_t, P3>> clips;
+  static std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
+    return a < b ? (std::uint64_t{a} << 32) | b : (std::uint64_t{b} << 32) | a;
+  }
+  const P3* known_clip(std::uint32_t a, std::uint32_t b) const {
+    const std::uint64_t key = edge_key(a, b);
+    const auto it = std::lower_bound(clips.begin(), clips.end(), key,
+                                     [](const std::pair<std::uint64_t, P3>& c, std::uint64_t k) { return c.first < k; });
+    return it != clips.end() && it->first == key ? &it->second : nullptr;
+  }
+  void make_clips(int threads);
   bool make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3>& dropped, std::deque<P3>& ends) const;
 };
 
@@ -472,6 +489,23 @@ bool CurveMaker::make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3
   if (equal_points(c.s->xy(), c.t->xy())) { ++dropped_point; return false; }   // seen end-on
   c.box = box_of(*c.s) + box_of(*c.t);
   return true;
+}
+
+// Every facet edge the near plane cuts, its cut point (made in parallel).
+void CurveMaker::make_clips(int threads) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> cut;   // (in front, behind)
+  for (const WorldFacet& w : wf.facets)
+    for (std::size_t k = 0, n = w.v.size(); k < n; ++k) {
+      const std::uint32_t a = w.v[k], b = w.v[(k + 1) % n];
+      if (in_front(a) && !in_front(b)) cut.emplace_back(a, b);
+      else if (in_front(b) && !in_front(a)) cut.emplace_back(b, a);
+    }
+  std::sort(cut.begin(), cut.end(), [](const auto& x, const auto& y) { return edge_key(x.first, x.second) < edge_key(y.first, y.second); });
+  cut.erase(std::unique(cut.begin(), cut.end()), cut.end());
+  clips = parallel_make<std::pair<std::uint64_t, P3>>(static_cast<int>(cut.size()), 256, threads, [&](int, int i, auto& c) {
+    const auto [a, b] = cut[static_cast<std::size_t>(i)];
+    c = {edge_key(a, b), clip_point(a, b)};
+  });
 }
 
 DepthPlane DepthPlane::of_doubles(double a, double b, double c) {
@@ -737,7 +771,10 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   auto clip_point = [&](std::uint32_t a, std::uint32_t b) { return M.clip_point(a, b); };
 
   std::vector<std::vector<P3>>& clip_edges = M.clip_edges;  // near-plane cuts
-  if (view.perspective) clip_edges.resize(wf.facets.size());   // (no plane cuts an orthographic view)
+  if (view.perspective) {   // (no plane cuts an orthographic view)
+    clip_edges.resize(wf.facets.size());
+    M.make_clips(threads);
+  }
   // Each facet on its own (in parallel, chunks of them): its screen polygon,
   // facing and depth plane. What a chunk culled is counted in its slot.
   const int nf = static_cast<int>(wf.facets.size());
