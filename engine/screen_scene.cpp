@@ -429,20 +429,6 @@ struct CurveMaker {
     return it != clips.end() && it->first == key ? &it->second : nullptr;
   }
   void make_clips(int threads);
-  // Facet `facet`, cut by the near plane: the edge of its screen polygon (as
-  // project_facet makes it) that holds the part in front of its world edge
-  // `edge`, or -1 (none).
-  int cut_polygon_edge(int facet, int edge) const {
-    const auto& v = wf.facets[static_cast<std::size_t>(facet)].v;
-    int at = 0;   // where project_facet puts the next point
-    for (std::size_t k = 0, n = v.size(); k < n; ++k) {
-      const bool fa = in_front(v[k]), fb = in_front(v[(k + 1) % n]);
-      if (static_cast<int>(k) == edge) return fa || fb ? at : -1;   // (from a's image, or from the cut to b's)
-      at += fa;
-      at += fa != fb;
-    }
-    return -1;
-  }
   bool make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3>& dropped, std::deque<P3>& ends) const;
 };
 
@@ -461,7 +447,7 @@ bool CurveMaker::make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3
     c.sharers.push_back(s.facet);
     // A facet not cut at the near plane keeps its vertices: its edge k is the world's.
     const Look& f = look[static_cast<std::size_t>(s.facet)];
-    c.sharer_edge.push_back(!f.projected ? -1 : cut(s.facet) ? cut_polygon_edge(s.facet, s.edge) : s.edge);
+    c.sharer_edge.push_back(!cut(s.facet) && f.projected ? s.edge : -1);
     if (wf.facets[s.facet].role[s.edge] == EdgeRole::Boundary) c.faces.push_back(wf.facets[s.facet].face);
     any_occluder |= f.occluder || (f.projected && f.facing == Facing::EdgeOn);
   }
@@ -508,7 +494,6 @@ bool CurveMaker::make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3
 // Every facet edge the near plane cuts, its cut point (made in parallel).
 void CurveMaker::make_clips(int threads) {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> cut;   // (in front, behind)
-  if (std::all_of(front.begin(), front.end(), [](char f) { return f != 0; })) return;   // (nothing cut)
   for (const WorldFacet& w : wf.facets)
     for (std::size_t k = 0, n = w.v.size(); k < n; ++k) {
       const std::uint32_t a = w.v[k], b = w.v[(k + 1) % n];
@@ -955,13 +940,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     c.s = &cut_ends.emplace_back(ce[0]);
     c.t = &cut_ends.emplace_back(ce[1]);
     c.sharers = {static_cast<int>(fi)};
-    // The polygon's edge from where it leaves the front half-space (ce[1]) to
-    // where it re-enters (ce[0]).
-    const auto& fv = ss.facets[fi].v;
-    int edge = -1;
-    for (std::size_t k = 0; k < fv.size() && edge < 0; ++k)
-      if (same_rep(fv[k].xy(), ce[1].xy()) && same_rep(fv[(k + 1) % fv.size()].xy(), ce[0].xy())) edge = static_cast<int>(k);
-    c.sharer_edge = {edge};
+    c.sharer_edge = {-1};
     c.order_face = ss.facets[fi].face;
     c.box = box_of(*c.s) + box_of(*c.t);
     ss.curves.push_back(std::move(c));
