@@ -493,6 +493,7 @@ bool CurveMaker::make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3
 
 // Every facet edge the near plane cuts, its cut point (made in parallel).
 void CurveMaker::make_clips(int threads) {
+  if (std::all_of(front.begin(), front.end(), [](char f) { return f != 0; })) return;   // (nothing is cut)
   std::vector<std::pair<std::uint32_t, std::uint32_t>> cut;   // (in front, behind)
   for (const WorldFacet& w : wf.facets)
     for (std::size_t k = 0, n = w.v.size(); k < n; ++k) {
