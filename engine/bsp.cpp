@@ -4,6 +4,7 @@
 // tree; the fragments, projected exactly, are then overlaid as Newell's engine
 // overlays its own (newell_overlay.cpp). One call per step.
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -118,10 +119,25 @@ class Images {
   }
 };
 
-// Fragment x of facet F on the screen, as `out`'s corners: those in front of the
-// near plane and where its edges cross it, counter-clockwise, each edge with the
-// facet edge it lies on (FragmentCorners). Empty where nothing of it is left.
-void screen_polygon(const BspTree::Fragment& x, const Facet& F, Images& images, Fragment& out) {
+// Fragment x's edge labels (edges of its world facet w, or -1) as edges of w's
+// screen facet F, as Newell's fragments and the curves' sharer_edge number them:
+// the same where the near plane cuts nothing (else made in `relabelled`).
+const std::vector<int>& screen_labels(const BspTree::Fragment& x, const WorldFacet& w, const Facet& F,
+                                      std::vector<int>& relabelled) {
+  if (std::find(F.id.begin(), F.id.end(), VertexId{-1}) == F.id.end()) return x.edge;
+  const auto in_front = [&](std::uint32_t id) { return F.has_vertex(id); };   // (F keeps its corners in front)
+  relabelled.assign(x.edge.size(), -1);
+  for (std::size_t k = 0; k < x.edge.size(); ++k)
+    if (x.edge[k] >= 0) relabelled[k] = screen_edge_of(w.v, x.edge[k], in_front);
+  return relabelled;
+}
+
+// Fragment x of world facet w (screen facet F) on the screen, as `out`'s
+// corners: those in front of the near plane and where its edges cross it,
+// counter-clockwise, each edge with the facet edge it lies on (FragmentCorners).
+// Empty where nothing of it is left.
+void screen_polygon(const BspTree::Fragment& x, const WorldFacet& w, const Facet& F, Images& images,
+                    Fragment& out) {
   FragmentCorners corners(out);
   const std::size_t n = x.corners.size();
   for (std::size_t k = 0; k < n; ++k) {
@@ -130,7 +146,8 @@ void screen_polygon(const BspTree::Fragment& x, const Facet& F, Images& images, 
     if (fa) corners.add(images.of(a, F), on_corner(k, n));
     if (fa != fb) corners.add(fa ? images.near_cut(a, b) : images.near_cut(b, a), on_edge(k));
   }
-  if (!corners.close(x.edge, F.facing == Facing::Back)) {
+  std::vector<int> relabelled;
+  if (!corners.close(screen_labels(x, w, F, relabelled), F.facing == Facing::Back)) {
     out.v.clear();
     out.edge.clear();
   }
@@ -161,7 +178,7 @@ void append_fragments(const BspTree& tree, const Scene& scene, const View& view,
     const Facet& F = ss.facets[static_cast<std::size_t>(fi)];
     if (!F.occluder) continue;
     Fragment f{fi, F.face, {}, {}, {}, {}};
-    screen_polygon(x, F, images, f);
+    screen_polygon(x, tree.facets->facets[x.facet], F, images, f);
     if (f.v.empty()) continue;
     f.cut_on.assign(f.v.size(), -1);
     f.box = newell::box_of(f.v);

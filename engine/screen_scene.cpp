@@ -447,7 +447,10 @@ bool CurveMaker::make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3
     c.sharers.push_back(s.facet);
     // A facet not cut at the near plane keeps its vertices: its edge k is the world's.
     const Look& f = look[static_cast<std::size_t>(s.facet)];
-    c.sharer_edge.push_back(!cut(s.facet) && f.projected ? s.edge : -1);
+    const auto front_id = [&](std::uint32_t id) { return in_front(id); };
+    c.sharer_edge.push_back(!f.projected     ? -1
+                            : !cut(s.facet) ? s.edge
+                                            : screen_edge_of(wf.facets[s.facet].v, s.edge, front_id));
     if (wf.facets[s.facet].role[s.edge] == EdgeRole::Boundary) c.faces.push_back(wf.facets[s.facet].face);
     any_occluder |= f.occluder || (f.projected && f.facing == Facing::EdgeOn);
   }
@@ -941,7 +944,14 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     c.s = &cut_ends.emplace_back(ce[0]);
     c.t = &cut_ends.emplace_back(ce[1]);
     c.sharers = {static_cast<int>(fi)};
-    c.sharer_edge = {-1};
+    // The polygon's edge from where it leaves the front half-space (ce[1]) to
+    // where it re-enters (ce[0]): the cut points are shared, known by identity.
+    const auto& fv = ss.facets[fi].v;
+    int edge = -1;
+    for (std::size_t k = 0; k < fv.size() && edge < 0; ++k)
+      if (same_rep(fv[k].xy(), ce[1].xy()) && same_rep(fv[(k + 1) % fv.size()].xy(), ce[0].xy()))
+        edge = static_cast<int>(k);
+    c.sharer_edge = {edge};
     c.order_face = ss.facets[fi].face;
     c.box = box_of(*c.s) + box_of(*c.t);
     ss.curves.push_back(std::move(c));

@@ -186,6 +186,23 @@ inline bool occluders_all_in_solids(const ScreenScene& ss) {
 ScreenScene make_screen_scene(const Scene& scene, const View& view, const Options& opt,
                               Stats& stats, bool latent = false, bool cull = true, const WorldScene* world = nullptr);
 
+// Edge k of a world facet with corners v (input vertex ids) as an edge of its
+// screen facet: make_screen_scene keeps the corners in front of the near plane
+// (`in_front(id)`) and puts a cut point where an edge crosses it, in the
+// facet's order. The index j of the screen edge v[j] -> v[j+1] that holds the
+// part of edge k in front, or -1 (none is). Where nothing is cut: k.
+template <class Ids, class InFront>
+int screen_edge_of(const Ids& v, int k, InFront in_front) {
+  int at = 0;   // the screen index of the next corner
+  for (std::size_t j = 0, n = v.size(); j < n; ++j) {
+    const bool fa = in_front(v[j]), fb = in_front(v[(j + 1) % n]);
+    if (static_cast<int>(j) == k) return fa || fb ? at : -1;   // (from a's image, or from the cut to b's)
+    at += fa;
+    at += fa != fb;
+  }
+  return -1;
+}
+
 // Whether input vertex v lies in the plane of facet f, in the world, exactly (no
 // gcd): false also where f has no three input corners spanning its plane.
 bool in_world_plane(const std::vector<Vec3>& input, long v, const Facet& f);
