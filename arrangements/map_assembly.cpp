@@ -248,35 +248,49 @@ struct Assembly {
   // Boundary cycles, and which are counter-clockwise (signed area > 0: on
   // intervals, exactly where they cannot tell).
   void trace_cycles() {
+    // The cycles numbered in order of their first halfedge (a walk along next:
+    // cheap), then their signed areas, the costly part, in parallel.
     cycle.assign(nhalf, -1);
+    std::vector<int> start;   // cycle -> its first halfedge
     for (int h0 = 0; h0 < nhalf; ++h0) {
       if (cycle[h0] >= 0) continue;
-      const int c = static_cast<int>(positive.size());
-      Interval area = 0;
-      {
-        CGAL::Protect_FPU_rounding<true> upward;
-        int h = h0;
-        do {
-          cycle[h] = c;
-          const auto &p = g.approx[source(h)], &q = g.approx[target(h)];
-          area += p.x() * q.y() - q.x() * p.y();
-          h = g.next[h];
-        } while (h != h0);
-      }
-      bool pos_area = area.inf() > 0;
-      if (area.inf() <= 0 && area.sup() > 0) {
-        ++filter_counts.exact;
-        mpq_class s = 0;
-        int h = h0;
-        do {
-          const auto &p = CGAL::exact(at(source(h))), &q = CGAL::exact(at(target(h)));
-          s += to_mpq(p.x()) * to_mpq(q.y()) - to_mpq(q.x()) * to_mpq(p.y());
-          h = g.next[h];
-        } while (h != h0);
-        pos_area = sgn(s) > 0;
-      }
-      positive.push_back(pos_area);
+      const int c = static_cast<int>(start.size());
+      start.push_back(h0);
+      int h = h0;
+      do {
+        cycle[h] = c;
+        h = g.next[h];
+      } while (h != h0);
     }
+    positive.assign(start.size(), 0);
+    engine::parallel_chunks(static_cast<int>(start.size()), 1024, threads, [&](int, engine::Chunk r) {
+      for (int c = r.begin; c < r.end; ++c) positive[static_cast<std::size_t>(c)] = counter_clockwise(start[c]);
+    });
+  }
+
+  // Whether the cycle through h0 turns counter-clockwise: the sign of its
+  // area, on intervals, exactly where they cannot tell.
+  bool counter_clockwise(int h0) const {
+    Interval area = 0;
+    {
+      CGAL::Protect_FPU_rounding<true> upward;
+      int h = h0;
+      do {
+        const auto &p = g.approx[source(h)], &q = g.approx[target(h)];
+        area += p.x() * q.y() - q.x() * p.y();
+        h = g.next[h];
+      } while (h != h0);
+    }
+    if (area.inf() > 0 || area.sup() <= 0) return area.inf() > 0;
+    ++filter_counts.exact;
+    mpq_class s = 0;
+    int h = h0;
+    do {
+      const auto &p = CGAL::exact(at(source(h))), &q = CGAL::exact(at(target(h)));
+      s += to_mpq(p.x()) * to_mpq(q.y()) - to_mpq(q.x()) * to_mpq(p.y());
+      h = g.next[h];
+    } while (h != h0);
+    return sgn(s) > 0;
   }
 
   // The outgoing halfedge at w whose face holds the directions just

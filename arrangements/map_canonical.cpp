@@ -136,6 +136,37 @@ void write_segments(const MapGraph& g, std::vector<Chain> chains, const std::vec
   }
 }
 
+// The ring of boundary halfedges from h0 (succ: the next one along its
+// region): its essential vertices from the canonical start, and whether it
+// turns counter-clockwise (an outer ring: its signed area positive, on
+// intervals, exactly where they cannot tell).
+void trace_ring(const MapGraph& g, const Essential& ess, const std::vector<int>& succ, int h0, std::vector<int>& ring,
+                bool& outer) {
+  auto source = [&](int h) { return g.ends[h >> 1][h & 1]; };
+  auto target = [&](int h) { return g.ends[h >> 1][(h & 1) ^ 1]; };
+  Interval area = 0;
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    int h = h0;
+    do {
+      if (ess.essential[source(h)]) ring.push_back(source(h));
+      const auto &p = g.approx[source(h)], &q = g.approx[target(h)];
+      area += p.x() * q.y() - q.x() * p.y();
+      h = succ[h];
+    } while (h != h0);
+  }
+  outer = area.inf() > 0;
+  if (area.inf() <= 0 && area.sup() > 0) {
+    mpq_class s2 = 0;
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Point2 p = exact_point(g, ring[i]), q = exact_point(g, ring[(i + 1) % ring.size()]);
+      s2 += p.x * q.y - q.x * p.y;
+    }
+    outer = sgn(s2) > 0;
+  }
+  rotate_canonical(ring);
+}
+
 }  // namespace
 
 EdgeAttr edge_attr(const std::vector<MapPiece>& pieces, const int* on_edge, std::size_t count, const P2& a,
@@ -178,8 +209,6 @@ void write_canonical(const MapGraph& g, VisibilityMap& map, int threads) {
   const int nedges = static_cast<int>(g.ends.size());
   const int nhalf = 2 * nedges;
   const int nverts = static_cast<int>(g.points.size());
-  auto source = [&](int h) { return g.ends[h >> 1][h & 1]; };
-  auto target = [&](int h) { return g.ends[h >> 1][(h & 1) ^ 1]; };
 
   // Face labels from the halfedges around them; they must all agree.
   std::vector<int> label(g.faces, INT_MIN);
@@ -206,59 +235,64 @@ void write_canonical(const MapGraph& g, VisibilityMap& map, int threads) {
     std::vector<int> outer;
     std::vector<std::vector<int>> holes;
   };
-  std::vector<int> slot(g.faces, -1);   // group -> index in `found`
-  std::vector<Rings> found;
-  std::vector<char> visited(nhalf, 0);
-  std::vector<int> ring;
-  for (int h0 = 0; h0 < nhalf; ++h0) {
-    const int lab = label[g.face[h0]];
-    if (lab < 0 || !boundary(h0) || visited[h0]) continue;
-    ring.clear();
-    // Counter-clockwise (an outer ring) when its signed area is positive: on
-    // intervals, exactly where they cannot tell.
-    Interval area = 0;
-    {
-      CGAL::Protect_FPU_rounding<true> upward;
-      int h = h0;
-      do {
-        visited[h] = 1;
-        if (ess.essential[source(h)]) { ring.push_back(source(h)); written[source(h)] = 1; }
-        const auto &p = g.approx[source(h)], &q = g.approx[target(h)];
-        area += p.x() * q.y() - q.x() * p.y();
-        int nx = g.next[h];
-        while (!boundary(nx)) nx = g.next[nx ^ 1];   // step over edges inside the region
-        h = nx;
-      } while (h != h0);
+  // The boundary rings: each boundary halfedge's successor along its region
+  // (stepping over edges inside it), then the rings numbered in order of their
+  // first halfedge (a walk: cheap), then each ring's vertices and turn (the
+  // costly part) in parallel.
+  std::vector<int> succ(nhalf, -1);
+  engine::parallel_chunks(nhalf, 16384, threads, [&](int, engine::Chunk r) {
+    for (int h = r.begin; h < r.end; ++h) {
+      if (label[g.face[h]] < 0 || !boundary(h)) continue;
+      int nx = g.next[h];
+      while (!boundary(nx)) nx = g.next[nx ^ 1];
+      succ[h] = nx;
     }
-    bool outer = area.inf() > 0;
-    if (area.inf() <= 0 && area.sup() > 0) {
-      mpq_class s2 = 0;
-      for (std::size_t i = 0; i < ring.size(); ++i) {
-        const Point2 p = exact_point(g, ring[i]), q = exact_point(g, ring[(i + 1) % ring.size()]);
-        s2 += p.x * q.y - q.x * p.y;
-      }
-      outer = sgn(s2) > 0;
-    }
-    int& k = slot[groups.find(g.face[h0])];
-    if (k < 0) { k = static_cast<int>(found.size()); found.emplace_back(); }
-    Rings& r = found[k];
-    r.face = lab;
-    rotate_canonical(ring);
-    if (outer) {
-      if (!r.outer.empty()) throw std::logic_error("visibility map: region with two outer rings (engine bug)");
-      r.outer = ring;
-    } else {
-      r.holes.push_back(ring);
+  });
+  std::vector<int> first;   // ring -> its first halfedge
+  {
+    std::vector<char> visited(nhalf, 0);
+    for (int h0 = 0; h0 < nhalf; ++h0) {
+      if (succ[h0] < 0 || visited[h0]) continue;
+      first.push_back(h0);
+      for (int h = h0; !visited[h]; h = succ[h]) visited[h] = 1;
     }
   }
+  struct Traced {
+    std::vector<int> ring;   // its essential vertices, from the canonical start
+    bool outer = false;      // counter-clockwise
+  };
+  std::vector<Traced> traced(first.size());
+  engine::parallel_chunks(static_cast<int>(first.size()), 1024, threads, [&](int, engine::Chunk r) {
+    for (int k = r.begin; k < r.end; ++k) trace_ring(g, ess, succ, first[k], traced[k].ring, traced[k].outer);
+  });
+  std::vector<int> slot(g.faces, -1);   // group -> index in `found`
+  std::vector<Rings> found;
+  for (std::size_t k = 0; k < first.size(); ++k) {
+    const int h0 = first[k];
+    std::vector<int>& ring = traced[k].ring;
+    for (int w : ring) written[w] = 1;
+    int& at = slot[groups.find(g.face[h0])];
+    if (at < 0) { at = static_cast<int>(found.size()); found.emplace_back(); }
+    Rings& r = found[at];
+    r.face = label[g.face[h0]];
+    if (traced[k].outer) {
+      if (!r.outer.empty()) throw std::logic_error("visibility map: region with two outer rings (engine bug)");
+      r.outer = std::move(ring);
+    } else {
+      r.holes.push_back(std::move(ring));
+    }
+  }
+  std::vector<Traced>().swap(traced);
   for (Rings& r : found) {
     if (r.outer.empty()) throw std::logic_error("visibility map: region without outer ring (engine bug)");
     std::sort(r.holes.begin(), r.holes.end());
   }
-  std::sort(found.begin(), found.end(), [](const Rings& a, const Rings& b) {
+  // (No two regions of one face have one outer ring: the order is total, and the
+  // same for every thread count.)
+  engine::parallel_sort(found.begin(), found.end(), [](const Rings& a, const Rings& b) {
     if (a.face != b.face) return a.face < b.face;
     return a.outer < b.outer;
-  });
+  }, threads);
   std::vector<Chain> chains = drawn_chains(g, ess, written);
   const std::vector<std::uint32_t> index = write_vertices(g, written, map, threads);
   auto ring_of = [&](const std::vector<int>& ids) {
@@ -267,14 +301,16 @@ void write_canonical(const MapGraph& g, VisibilityMap& map, int threads) {
     for (int w : ids) out.push_back(index[w]);
     return out;
   };
-  map.regions.reserve(found.size());
-  for (const Rings& r : found) {
-    Region out;
-    out.face = r.face;
-    out.outer = ring_of(r.outer);
-    for (const auto& hole : r.holes) out.holes.push_back(ring_of(hole));
-    map.regions.push_back(std::move(out));
-  }
+  map.regions.resize(found.size());
+  engine::parallel_chunks(static_cast<int>(found.size()), 4096, threads, [&](int, engine::Chunk c) {
+    for (int i = c.begin; i < c.end; ++i) {
+      const Rings& r = found[static_cast<std::size_t>(i)];
+      Region& out = map.regions[static_cast<std::size_t>(i)];
+      out.face = r.face;
+      out.outer = ring_of(r.outer);
+      for (const auto& hole : r.holes) out.holes.push_back(ring_of(hole));
+    }
+  });
 
   write_segments(g, std::move(chains), index, map);
 }
