@@ -83,9 +83,10 @@ engine:
                        ordered by Tomlinson's priority, built once per scene,
                        then Newell's overlay; with --views, one forest for
                        all views); all give the same map
-  --threads N          threads for Franklin's engine and the JSON (default:
-                       every usable core, one for scenes under 8192 faces);
-                       the map is the same for every N
+  --threads N          threads for reading a large OFF file, Franklin's
+                       engine and the JSON (default: every usable core, one
+                       for scenes under 8192 faces); the map is the same for
+                       every N
   --grid-c C           Franklin's grid constant c, B = c*min(sqrt(N),1/L) (default 4)
   --painter FILE       with --algorithm newell or bsp: SVG of the ordered, split
                        fragments filled back to front (the painter's drawing)
@@ -286,6 +287,7 @@ int main(int argc, char** argv) {
   }
 
   try {
+    limits.threads = eng.threads > 0 ? eng.threads : vismap::engine::usable_cores();
     vismap::Scene scene = vismap::read_scene(scene_path, limits, format);
     // Every camera first: an impossible one stops the run before any output.
     std::vector<vismap::View> views;

@@ -166,6 +166,71 @@ TEST(Off, ParsesNearestDouble) {
   EXPECT_EQ(s.vertices[5].y, 0.1);
 }
 
+// A large OFF file (over 2 MB of records: read in pieces when threads are
+// given), with comments, blank lines, CRLF lines, extra values and junk after
+// the faces; `break_at` (a record number) spoils that record with text.
+std::string large_off(std::size_t nv, std::size_t nf, long break_at = -1, bool truncate = false) {
+  std::string s = "OFF\n# made by the test\n" + std::to_string(nv) + " " + std::to_string(nf) + " 0\n";
+  std::size_t r = 0;
+  auto end_line = [&](std::size_t k) { s += k % 7 == 0 ? "\r\n" : k % 11 == 0 ? "   # note\n\n" : "\n"; };
+  for (std::size_t i = 0; i < nv; ++i, ++r) {
+    if (static_cast<long>(r) == break_at) { s += "1 oops 3\n"; continue; }
+    s += std::to_string(i * 0.25) + " " + std::to_string(i % 97) + " -" + std::to_string(i % 13) + ".5";
+    if (i % 5 == 0) s += " 0.5 0.5 0.5";
+    end_line(i);
+  }
+  for (std::size_t f = 0; f < nf; ++f, ++r) {
+    if (static_cast<long>(r) == break_at) { s += "3 0 1\n"; continue; }
+    const std::size_t a = f % nv, b = (f * 7 + 1) % nv, c = (f * 13 + 2) % nv;
+    s += f % 9 == 0 ? "4 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + " " +
+                          std::to_string((a + 5) % nv)
+                    : "3 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c);
+    end_line(f);
+  }
+  if (truncate) s.resize(s.rfind('\n', s.size() - 40 * 1000) + 1);   // (a thousand records or so short)
+  else s += "junk after the faces is ignored\n";
+  return s;
+}
+
+ReadLimits with_threads(int threads) {
+  ReadLimits l;
+  l.threads = threads;
+  return l;
+}
+
+TEST(Off, ReadInPiecesAsInOne) {
+  const std::string text = large_off(60000, 120000);
+  ASSERT_GT(text.size(), 3u << 20);
+  const Scene one = read(text, "off");
+  ASSERT_EQ(one.vertices.size(), 60000u);
+  ASSERT_EQ(one.faces.size(), 120000u);
+  EXPECT_EQ(one.faces[9], (std::vector<std::uint32_t>{9, 64, 119, 14}));
+  for (int threads : {2, 3, 8}) {
+    const Scene many = read(text, "off", with_threads(threads));
+    ASSERT_EQ(many.vertices.size(), one.vertices.size());
+    for (std::size_t i = 0; i < one.vertices.size(); ++i) {
+      ASSERT_EQ(many.vertices[i].x, one.vertices[i].x);
+      ASSERT_EQ(many.vertices[i].y, one.vertices[i].y);
+      ASSERT_EQ(many.vertices[i].z, one.vertices[i].z);
+    }
+    EXPECT_EQ(many.faces, one.faces);
+  }
+}
+
+TEST(Off, ReadInPiecesFailsAsInOne) {
+  // A spoilt record early, in the middle, near the end; a file cut short.
+  for (long at : {3L, 61234L, 90000L, 179990L}) {
+    const std::string text = large_off(60000, 120000, at);
+    const std::string one = error_of(text, "big.off", "off");
+    ASSERT_TRUE(starts_with(one, "big.off:")) << one;
+    for (int threads : {2, 8}) EXPECT_EQ(error_of(text, "big.off", "off", with_threads(threads)), one) << at;
+  }
+  const std::string cut = large_off(60000, 120000, -1, true);
+  const std::string one = error_of(cut, "big.off", "off");
+  EXPECT_TRUE(one.find("unexpected end of file: expected 120000 faces") != std::string::npos) << one;
+  for (int threads : {2, 8}) EXPECT_EQ(error_of(cut, "big.off", "off", with_threads(threads)), one);
+}
+
 // --- OBJ ----------------------------------------------------------------------------
 
 TEST(Obj, CornerFormsIgnoredRecordsAndPolygons) {

@@ -58,6 +58,10 @@ bool parse_uint(std::string_view token, std::uint64_t& out);
 class TextCursor {
  public:
   TextCursor(std::string_view text, const std::string& name, char comment = 0);
+  // A piece of a larger text, from the start of its line `first_line` (no
+  // byte-order mark looked for): messages name the larger text's lines.
+  TextCursor(std::string_view piece, const std::string& name, char comment, std::uint64_t first_line)
+      : text_(piece), name_(name), comment_(comment), line_(first_line) {}
 
   const std::string& name() const { return name_; }
   std::uint64_t line() const { return line_; }

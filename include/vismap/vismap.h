@@ -72,6 +72,9 @@ struct ReadLimits {
   // whose estimated need is larger, is refused before anything is allocated for
   // it, as soon as its counts are known.
   std::uint64_t max_memory = 0;
+  // Threads a reader may use (a large OFF file is parsed in pieces side by side);
+  // the scene read is the same for every count.
+  int threads = 1;
 };
 
 // Reads OFF, OBJ, STL (ASCII/binary), PLY (ASCII/binary) or vismap's own JSON
