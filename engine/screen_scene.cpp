@@ -445,12 +445,13 @@ bool CurveMaker::make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3
   bool any_occluder = false;
   for (const Sharer& s : wp.sharers) {
     c.sharers.push_back(s.facet);
-    // A facet not cut at the near plane keeps its vertices: its edge k is the world's.
+    // A facet not cut at the near plane keeps its vertices: its edge k is the
+    // world's; a cut one's polygon numbers its edges anew.
     const Look& f = look[static_cast<std::size_t>(s.facet)];
-    const auto front_id = [&](std::uint32_t id) { return in_front(id); };
+    auto front = [this](std::uint32_t id) { return in_front(id); };
     c.sharer_edge.push_back(!f.projected     ? -1
                             : !cut(s.facet) ? s.edge
-                                            : screen_edge_of(wf.facets[s.facet].v, s.edge, front_id));
+                                            : screen_edge_of(wf.facets[s.facet].v, s.edge, front));
     if (wf.facets[s.facet].role[s.edge] == EdgeRole::Boundary) c.faces.push_back(wf.facets[s.facet].face);
     any_occluder |= f.occluder || (f.projected && f.facing == Facing::EdgeOn);
   }

@@ -134,7 +134,8 @@ struct Curve {
   VertexId vs = -1, vt = -1;     // end point identity (canonical vertex id) or -1
   SmallInts sharers;             // facets whose boundary it is (for intersections: the two facets)
   SmallInts sharer_edge;         // per sharer: k where its edge v[k] -> v[k+1] holds the curve
-                                 // (-1: not known, as on a facet cut at the near plane)
+                                 // (its screen polygon's, which the near plane's cut renumbers:
+                                 // screen_edge_of), or -1 (none, or not known)
   SmallInts faces;               // faces written in the JSON, ascending; empty = never drawn
   EdgeKind kind = EdgeKind::Border;
   bool drawn = false;
@@ -189,8 +190,8 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
 // Edge k of a world facet with corners v (input vertex ids) as an edge of its
 // screen facet: make_screen_scene keeps the corners in front of the near plane
 // (`in_front(id)`) and puts a cut point where an edge crosses it, in the
-// facet's order. The index j of the screen edge v[j] -> v[j+1] that holds the
-// part of edge k in front, or -1 (none is). Where nothing is cut: k.
+// facet's order. The screen facet's edge (from its corner j to j + 1) that
+// holds the part of edge k in front, j, or -1 (none is). Where nothing is cut: k.
 template <class Ids, class InFront>
 int screen_edge_of(const Ids& v, int k, InFront in_front) {
   int at = 0;   // the screen index of the next corner
