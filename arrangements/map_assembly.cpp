@@ -432,10 +432,14 @@ void add_edges(std::vector<MapPiece>& pieces, MapGraph& g, int threads) {
   auto key = [&](int i) { return std::pair(vertex_of[2 * i], vertex_of[2 * i + 1]); };
   engine::parallel_sort(order.begin(), order.end(), [&](int i, int j) { return std::pair(key(i), i) < std::pair(key(j), j); },
                         threads);
-  // One edge per run of equal keys: where the runs start, then each edge (in chunks).
+  // One edge per run of equal keys: where the runs start (chunks of the order
+  // side by side, appended in order), then each edge (in chunks).
   std::vector<int> starts;
-  for (int k = 0; k < n; ++k)
-    if (k == 0 || key(order[k]) != key(order[k - 1])) starts.push_back(k);
+  engine::parallel_append(starts, engine::chunk_count(n, size), threads, [&](int c, std::vector<int>& out) {
+    const engine::Chunk r = engine::chunk(c, n, size);
+    for (int k = r.begin; k < r.end; ++k)
+      if (k == 0 || key(order[k]) != key(order[k - 1])) out.push_back(k);
+  });
   starts.push_back(n);
   const int nedges = static_cast<int>(starts.size()) - 1;
   g.ends.resize(static_cast<std::size_t>(nedges));
@@ -515,7 +519,9 @@ void finish_map(MapGraph& g, VisibilityMap& map, int threads) {
     }
   }
   g.face.resize(a.nhalf);
-  for (int h = 0; h < a.nhalf; ++h) g.face[h] = face_of[a.cycle[h]];
+  engine::parallel_chunks(a.nhalf, 16384, threads, [&](int, engine::Chunk r) {
+    for (int h = r.begin; h < r.end; ++h) g.face[h] = face_of[a.cycle[h]];
+  });
   write_canonical(g, map, threads);
 }
 
