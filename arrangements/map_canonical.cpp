@@ -167,6 +167,43 @@ void trace_ring(const MapGraph& g, const Essential& ess, const std::vector<int>&
   rotate_canonical(ring);
 }
 
+// A boundary ring: its essential vertices from the canonical start, and its turn.
+struct Traced {
+  std::vector<int> ring;
+  bool outer = false;   // counter-clockwise
+};
+
+// The rings bounding the regions (faces of one label joined: `label` per face,
+// -1 outside the map): each boundary halfedge's successor along its region
+// (stepping over edges inside it), then the rings numbered in order of their
+// first halfedge (a walk: cheap; `first`), then each ring traced (the costly
+// part) in parallel.
+std::vector<Traced> boundary_rings(const MapGraph& g, const std::vector<int>& label, const Essential& ess,
+                                   std::vector<int>& first, int threads) {
+  const int nhalf = static_cast<int>(2 * g.ends.size());
+  auto boundary = [&](int h) { return label[g.face[h]] != label[g.face[h ^ 1]]; };
+  std::vector<int> succ(nhalf, -1);
+  engine::parallel_chunks(nhalf, 16384, threads, [&](int, engine::Chunk r) {
+    for (int h = r.begin; h < r.end; ++h) {
+      if (label[g.face[h]] < 0 || !boundary(h)) continue;
+      int nx = g.next[h];
+      while (!boundary(nx)) nx = g.next[nx ^ 1];
+      succ[h] = nx;
+    }
+  });
+  std::vector<char> visited(nhalf, 0);
+  for (int h0 = 0; h0 < nhalf; ++h0) {
+    if (succ[h0] < 0 || visited[h0]) continue;
+    first.push_back(h0);
+    for (int h = h0; !visited[h]; h = succ[h]) visited[h] = 1;
+  }
+  std::vector<Traced> traced(first.size());
+  engine::parallel_chunks(static_cast<int>(first.size()), 1024, threads, [&](int, engine::Chunk r) {
+    for (int k = r.begin; k < r.end; ++k) trace_ring(g, ess, succ, first[k], traced[k].ring, traced[k].outer);
+  });
+  return traced;
+}
+
 }  // namespace
 
 EdgeAttr edge_attr(const std::vector<MapPiece>& pieces, const int* on_edge, std::size_t count, const P2& a,
@@ -229,42 +266,13 @@ void write_canonical(const MapGraph& g, VisibilityMap& map, int threads) {
   UnionFind groups(g.faces);
   for (int e = 0; e < nedges; ++e)
     if (label[g.face[2 * e]] == label[g.face[2 * e + 1]]) groups.join(g.face[2 * e], g.face[2 * e + 1]);
-  auto boundary = [&](int h) { return label[g.face[h]] != label[g.face[h ^ 1]]; };
   struct Rings {
     int face = -1;
     std::vector<int> outer;
     std::vector<std::vector<int>> holes;
   };
-  // The boundary rings: each boundary halfedge's successor along its region
-  // (stepping over edges inside it), then the rings numbered in order of their
-  // first halfedge (a walk: cheap), then each ring's vertices and turn (the
-  // costly part) in parallel.
-  std::vector<int> succ(nhalf, -1);
-  engine::parallel_chunks(nhalf, 16384, threads, [&](int, engine::Chunk r) {
-    for (int h = r.begin; h < r.end; ++h) {
-      if (label[g.face[h]] < 0 || !boundary(h)) continue;
-      int nx = g.next[h];
-      while (!boundary(nx)) nx = g.next[nx ^ 1];
-      succ[h] = nx;
-    }
-  });
   std::vector<int> first;   // ring -> its first halfedge
-  {
-    std::vector<char> visited(nhalf, 0);
-    for (int h0 = 0; h0 < nhalf; ++h0) {
-      if (succ[h0] < 0 || visited[h0]) continue;
-      first.push_back(h0);
-      for (int h = h0; !visited[h]; h = succ[h]) visited[h] = 1;
-    }
-  }
-  struct Traced {
-    std::vector<int> ring;   // its essential vertices, from the canonical start
-    bool outer = false;      // counter-clockwise
-  };
-  std::vector<Traced> traced(first.size());
-  engine::parallel_chunks(static_cast<int>(first.size()), 1024, threads, [&](int, engine::Chunk r) {
-    for (int k = r.begin; k < r.end; ++k) trace_ring(g, ess, succ, first[k], traced[k].ring, traced[k].outer);
-  });
+  std::vector<Traced> traced = boundary_rings(g, label, ess, first, threads);
   std::vector<int> slot(g.faces, -1);   // group -> index in `found`
   std::vector<Rings> found;
   for (std::size_t k = 0; k < first.size(); ++k) {

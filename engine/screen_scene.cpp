@@ -443,12 +443,12 @@ bool CurveMaker::make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3
   c.faces.clear();
   c.kind = EdgeKind::Border;
   bool any_occluder = false;
+  auto front = [this](std::uint32_t id) { return in_front(id); };
   for (const Sharer& s : wp.sharers) {
     c.sharers.push_back(s.facet);
     // A facet not cut at the near plane keeps its vertices: its edge k is the
     // world's; a cut one's polygon numbers its edges anew.
     const Look& f = look[static_cast<std::size_t>(s.facet)];
-    auto front = [this](std::uint32_t id) { return in_front(id); };
     c.sharer_edge.push_back(!f.projected     ? -1
                             : !cut(s.facet) ? s.edge
                                             : screen_edge_of(wf.facets[s.facet].v, s.edge, front));
