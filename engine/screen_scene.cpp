@@ -608,10 +608,10 @@ void keep_where_meeting_itself(std::vector<char>& hidden, const ClosedComponents
   for (std::size_t fi = 0; fi < n; ++fi)
     if (const int k = slot[static_cast<std::size_t>(cc.component[fi])]; k >= 0)
       members[static_cast<std::size_t>(k)].push_back(static_cast<int>(fi));
-  for (const auto& m : members) {
-    const bool meets = meets_itself(*M.scene, M.wf, m);
-    for (int fi : m) {
-      if (meets) hidden[static_cast<std::size_t>(fi)] = 0;
+  const std::vector<char> meets = meets_itself(*M.scene, M.wf, members);
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    for (int fi : members[k]) {
+      if (meets[k]) hidden[static_cast<std::size_t>(fi)] = 0;
       else solid[static_cast<std::size_t>(fi)] = cc.component[static_cast<std::size_t>(fi)];
     }
   }

@@ -19,24 +19,136 @@ using K = CGAL::Epick;   // (predicates only: exact)
 using Point = K::Point_3;
 
 struct Triangle {
-  std::array<std::uint32_t, 3> v;   // canonical vertex ids
+  std::array<std::uint32_t, 3> v;       // canonical vertex ids
+  std::array<std::uint32_t, 3> local;   // the same, numbered 0, 1, ... within the component
   std::array<const Vec3*, 3> corner;
   int facet;
 };
 
 // The fans of the facets, without the triangles whose corners are collinear
-// (those lie on their facet's border, which its other triangles hold).
-std::vector<Triangle> fans(const Scene& scene, const WorldFacets& wf, const std::vector<int>& facets) {
-  std::vector<Triangle> out;
+// (those lie on their facet's border, which its other triangles hold), and
+// how many vertices they have. `slot` (per canonical id, ~0u) numbers them,
+// and is left as it was found.
+struct Fans {
+  std::vector<Triangle> tris;
+  std::uint32_t vertices = 0;
+};
+Fans fans(const Scene& scene, const WorldFacets& wf, const std::vector<int>& facets, std::vector<std::uint32_t>& slot) {
+  Fans out;
+  auto local = [&](std::uint32_t id) {
+    if (slot[id] == ~0u) slot[id] = out.vertices++;
+    return slot[id];
+  };
   for (int fi : facets) {
     const auto& v = wf.facets[static_cast<std::size_t>(fi)].v;
     for (std::size_t k = 1; k + 1 < v.size(); ++k)
       if (!world::collinear(scene.vertices[v[0]], scene.vertices[v[k]], scene.vertices[v[k + 1]]))
-        out.push_back({{v[0], v[k], v[k + 1]},
-                       {&scene.vertices[v[0]], &scene.vertices[v[k]], &scene.vertices[v[k + 1]]},
-                       fi});
+        out.tris.push_back({{v[0], v[k], v[k + 1]},
+                            {local(v[0]), local(v[k]), local(v[k + 1])},
+                            {&scene.vertices[v[0]], &scene.vertices[v[k]], &scene.vertices[v[k + 1]]},
+                            fi});
   }
+  for (const Triangle& t : out.tris)
+    for (auto id : t.v) slot[id] = ~0u;
   return out;
+}
+
+// Vertex stars that lie flat along a coordinate axis. On a mesh, nearly every
+// pair of triangles whose boxes meet are neighbours sharing a corner v. Where
+// the triangles around v, seen along one coordinate axis, each have a
+// non-zero area and go round v exactly once (their link edges make one cycle
+// of winding number 1 about v), their projections tile a disk around v, each
+// within its own angle: two of them meet on the projection only at v or along
+// a common edge, and since the projection is one to one on each of them, so
+// do they. One test per vertex answers all its pairs (as EmbeddedStars does on
+// the screen: engine/embedded_stars.h); only the axis and coordinates differ.
+// Exact: orientations and comparisons of input doubles.
+class FlatStars {
+  static double coordinate(const Vec3& p, int k) { return k == 0 ? p.x : k == 1 ? p.y : p.z; }
+
+ public:
+  explicit FlatStars(const Fans& fans) : flat_(fans.vertices, 0) {
+    // Each vertex's triangles (compressed rows, by local number).
+    const std::vector<Triangle>& tris = fans.tris;
+    const std::size_t vertices = fans.vertices;
+    std::vector<std::uint32_t> first(vertices + 1, 0);
+    for (const Triangle& t : tris)
+      for (auto v : t.local) ++first[v + 1];
+    for (std::size_t v = 0; v < vertices; ++v) first[v + 1] += first[v];
+    std::vector<std::uint32_t> at(first.begin(), first.end() - 1), of(first.back());
+    for (std::size_t i = 0; i < tris.size(); ++i)
+      for (auto v : tris[i].local) of[at[v]++] = static_cast<std::uint32_t>(i);
+    for (std::size_t v = 0; v < vertices; ++v)
+      if (first[v + 1] > first[v])
+        flat_[v] = flat(tris, v, of.data() + first[v], first[v + 1] - first[v]);
+  }
+  // Whether the star of the vertex numbered v (Triangle::local) is flat: then
+  // two of its triangles meet only at v and along an edge they share.
+  bool at(std::uint32_t v) const { return flat_[v] != 0; }
+
+ private:
+  static constexpr std::size_t kMaxStar = 32;
+  struct Link {   // the side a -> b of a triangle (v, a, b) turning positively
+    const Vec3* a;   // (a's point; b's is the next link's a)
+    std::uint32_t ia, ib;
+  };
+  static bool flat(const std::vector<Triangle>& tris, std::size_t v, const std::uint32_t* star, std::size_t n) {
+    if (n < 3 || n > kMaxStar) return false;
+    // The axis to look along: the first triangle's normal's largest component
+    // (doubles: any axis gives an exact answer; this one makes flat stars likely).
+    const Triangle& t0 = tris[star[0]];
+    const auto nv = world::normal_of<double>(*t0.corner[0], *t0.corner[1], *t0.corner[2]);
+    int axis = 0;
+    for (int k = 1; k < 3; ++k)
+      if (std::abs(nv[static_cast<std::size_t>(k)]) > std::abs(nv[static_cast<std::size_t>(axis)])) axis = k;
+    const int ux = (axis + 1) % 3, uy = (axis + 2) % 3;
+    auto xy = [&](const Vec3& p) { return CGAL::Epick::Point_2(coordinate(p, ux), coordinate(p, uy)); };
+    Link e[kMaxStar];
+    const Vec3* centre = nullptr;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Triangle& t = tris[star[i]];
+      const std::size_t k = t.local[0] == v ? 0 : t.local[1] == v ? 1 : 2;
+      const std::size_t ka = (k + 1) % 3, kb = (k + 2) % 3;
+      centre = t.corner[k];
+      const CGAL::Orientation o = CGAL::orientation(xy(*t.corner[k]), xy(*t.corner[ka]), xy(*t.corner[kb]));
+      if (o == CGAL::COLLINEAR) return false;
+      e[i] = o == CGAL::LEFT_TURN ? Link{t.corner[ka], t.v[ka], t.v[kb]} : Link{t.corner[kb], t.v[kb], t.v[ka]};
+    }
+    // One cycle: following each edge by one that starts where it ends, from
+    // the first, comes back to it after all n. (Then no two start at one link
+    // vertex: both would follow the same edge.)
+    std::size_t next[kMaxStar];
+    for (std::size_t i = 0; i < n; ++i) {
+      std::size_t j = 0;
+      while (j < n && e[j].ia != e[i].ib) ++j;
+      if (j == n) return false;
+      next[i] = j;
+    }
+    std::size_t at = 0;
+    for (std::size_t steps = 1; steps < n; ++steps) {
+      at = next[at];
+      if (at == 0) return false;
+    }
+    if (next[at] != 0) return false;
+    // Winding number 1: every triangle turns positively about v, so it is the
+    // number of link edges crossing v's horizontal line upwards (each right of
+    // v; the half-open rule counts a link vertex on the line once).
+    const double y = coordinate(*centre, uy);
+    int upward = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      upward += coordinate(*e[i].a, uy) <= y && !(coordinate(*e[next[i]].a, uy) <= y);
+    return upward == 1;
+  }
+  std::vector<char> flat_;
+};
+
+// Whether triangles a and b share a corner whose star is flat.
+bool share_flat_star(const Triangle& a, const Triangle& b, const FlatStars& stars) {
+  for (std::size_t k = 0; k < 3; ++k) {
+    const auto u = a.v[k];
+    if ((u == b.v[0] || u == b.v[1] || u == b.v[2]) && stars.at(a.local[k])) return true;
+  }
+  return false;
 }
 
 // Whether every point of a lies strictly on one side of b's plane (but the
@@ -120,23 +232,32 @@ bool any_box_pair(const std::vector<CGAL::Bbox_3>& boxes, F&& f) {
     return t < g[k] ? static_cast<int>(t) : g[k] - 1;
   };
   auto index = [&](int x, int y, int z) { return (static_cast<std::size_t>(z) * g[1] + y) * g[0] + x; };
-  auto for_cells = [&](const CGAL::Bbox_3& b, auto&& visit) {
-    const int x0 = cell(0, b.xmin()), x1 = cell(0, b.xmax()), y0 = cell(1, b.ymin()), y1 = cell(1, b.ymax());
-    const int z0 = cell(2, b.zmin()), z1 = cell(2, b.zmax());
-    for (int z = z0; z <= z1; ++z)
-      for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x) visit(index(x, y, z));
+  // Each box's cells, lowest and highest in each axis (the cell of a common
+  // box's lower corner is the larger of the two boxes' lowest in each axis:
+  // cell() is monotone).
+  struct Cells {
+    int lo[3], hi[3];
+  };
+  std::vector<Cells> range(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const CGAL::Bbox_3& b = boxes[i];
+    for (int k = 0; k < 3; ++k) {
+      range[i].lo[k] = cell(k, b.min(k));
+      range[i].hi[k] = cell(k, b.max(k));
+    }
+  }
+  auto for_cells = [&](const Cells& r, auto&& visit) {
+    for (int z = r.lo[2]; z <= r.hi[2]; ++z)
+      for (int y = r.lo[1]; y <= r.hi[1]; ++y)
+        for (int x = r.lo[0]; x <= r.hi[0]; ++x) visit(index(x, y, z));
   };
   const std::size_t cells = static_cast<std::size_t>(g[0]) * g[1] * g[2];
   std::vector<std::uint32_t> start(cells + 1, 0);
-  for (const auto& b : boxes) for_cells(b, [&](std::size_t c) { ++start[c + 1]; });
+  for (const Cells& r : range) for_cells(r, [&](std::size_t c) { ++start[c + 1]; });
   for (std::size_t c = 1; c <= cells; ++c) start[c] += start[c - 1];
   std::vector<std::uint32_t> fill(start.begin(), start.end() - 1), member(start.back());
-  for (std::size_t i = 0; i < n; ++i) for_cells(boxes[i], [&](std::size_t c) { member[fill[c]++] = static_cast<std::uint32_t>(i); });
-  // Each box's lowest cell (the cell of a common box's lower corner is the
-  // largest of the two boxes' in each axis: cell() is monotone).
-  std::vector<std::array<int, 3>> low(n);
-  for (std::size_t i = 0; i < n; ++i) low[i] = {cell(0, boxes[i].xmin()), cell(1, boxes[i].ymin()), cell(2, boxes[i].zmin())};
+  for (std::size_t i = 0; i < n; ++i)
+    for_cells(range[i], [&](std::size_t c) { member[fill[c]++] = static_cast<std::uint32_t>(i); });
   // In each cell, its boxes by their lower x: a box meets only those after it
   // that start before it ends.
   for (std::size_t c = 0; c < cells; ++c) {
@@ -144,11 +265,12 @@ bool any_box_pair(const std::vector<CGAL::Bbox_3>& boxes, F&& f) {
     std::sort(first, last, [&](std::uint32_t i, std::uint32_t j) { return boxes[i].xmin() < boxes[j].xmin(); });
     for (auto s = first; s != last; ++s) {
       const CGAL::Bbox_3& a = boxes[*s];
+      const Cells& ra = range[*s];
       for (auto t = s + 1; t != last && boxes[*t].xmin() <= a.xmax(); ++t) {
         const CGAL::Bbox_3& b = boxes[*t];
         if (a.ymax() < b.ymin() || b.ymax() < a.ymin() || a.zmax() < b.zmin() || b.zmax() < a.zmin()) continue;
-        const auto &la = low[*s], &lb = low[*t];
-        const std::size_t home = index(std::max(la[0], lb[0]), std::max(la[1], lb[1]), std::max(la[2], lb[2]));
+        const Cells& rb = range[*t];
+        const std::size_t home = index(std::max(ra.lo[0], rb.lo[0]), std::max(ra.lo[1], rb.lo[1]), std::max(ra.lo[2], rb.lo[2]));
         if (home == c && f(*s, *t)) return true;
       }
     }
@@ -156,10 +278,9 @@ bool any_box_pair(const std::vector<CGAL::Bbox_3>& boxes, F&& f) {
   return false;
 }
 
-}  // namespace
-
-bool meets_itself(const Scene& scene, const WorldFacets& wf, const std::vector<int>& facets) {
-  const std::vector<Triangle> tris = fans(scene, wf, facets);
+// Whether the triangles of one component meet other than where they share corners.
+bool meets(const Fans& fans) {
+  const std::vector<Triangle>& tris = fans.tris;
   std::vector<CGAL::Bbox_3> boxes;
   std::vector<world::PlaneSide> planes;   // (each triangle's normal once, for the side tests)
   boxes.reserve(tris.size());
@@ -170,9 +291,25 @@ bool meets_itself(const Scene& scene, const WorldFacets& wf, const std::vector<i
     boxes.push_back(b);
     planes.emplace_back(*t.corner[0], *t.corner[1], *t.corner[2]);
   }
+  const FlatStars stars(fans);
   return any_box_pair(boxes, [&](std::uint32_t i, std::uint32_t j) {
-    return tris[i].facet != tris[j].facet && meet(tris[i], tris[j], planes[i], planes[j]);
+    return tris[i].facet != tris[j].facet && !share_flat_star(tris[i], tris[j], stars) &&
+           meet(tris[i], tris[j], planes[i], planes[j]);
   });
+}
+
+}  // namespace
+
+std::vector<char> meets_itself(const Scene& scene, const WorldFacets& wf, const std::vector<std::vector<int>>& components) {
+  std::vector<std::uint32_t> slot(scene.vertices.size(), ~0u);   // (one table for all, left as found)
+  std::vector<char> out;
+  out.reserve(components.size());
+  for (const std::vector<int>& facets : components) out.push_back(meets(fans(scene, wf, facets, slot)));
+  return out;
+}
+
+bool meets_itself(const Scene& scene, const WorldFacets& wf, const std::vector<int>& facets) {
+  return meets_itself(scene, wf, std::vector<std::vector<int>>{facets})[0] != 0;
 }
 
 }  // namespace vismap::engine

@@ -17,5 +17,7 @@ namespace vismap::engine {
 // and along the edges between those. Facets with collinear corners are taken as
 // their fans' non-degenerate triangles.
 bool meets_itself(const Scene& scene, const WorldFacets& wf, const std::vector<int>& facets);
+// The same for each of several components, in one pass (per component: 1 if it meets itself).
+std::vector<char> meets_itself(const Scene& scene, const WorldFacets& wf, const std::vector<std::vector<int>>& components);
 
 }  // namespace vismap::engine

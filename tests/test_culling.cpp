@@ -4,6 +4,7 @@
 // The corpus (tests/data/cases.txt: tube_hook.off, tube_through_itself.off)
 // checks the maps; these check each step's answer where it is known by hand.
 #include <gtest/gtest.h>
+#include <cmath>
 
 #include <vector>
 
@@ -105,6 +106,40 @@ TEST(SelfContact, ClosedTubesAndTouchingTriangles) {
   // Sharing nothing: a corner of one on the other (touching) meets it.
   const std::vector<Vec3> u = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0.5, 0.5, 0}, {0.5, 0.5, 1}, {1.5, 0.5, 1}};
   EXPECT_TRUE(meets(triangles(u, {{0, 1, 2}, {3, 4, 5}})));
+}
+
+TEST(SelfContact, StarsThatGoRoundTwiceAreTested) {
+  // Six triangles around the origin, each turning 120 degrees about it seen
+  // along z: their link is one cycle, but it goes round twice. The second
+  // round's triangle (0, 4, 5) dips through the first round's (0, 1, 2) (its
+  // far edge crosses z = 0 at (0.25, 0.433..)): they meet other than at their
+  // one shared corner, which a star taken as flat would miss.
+  const double c = std::cos(2 * M_PI / 3), s = std::sin(2 * M_PI / 3);
+  const std::vector<Vec3> v = {{0, 0, 0},  {2, 0, 0},  {2 * c, 2 * s, 0}, {2 * c, -2 * s, 0},
+                               {1, 0, 1},  {c, s, -1}, {c, -s, 1}};
+  const std::vector<IndexRing> twice = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}, {0, 5, 6}, {0, 6, 1}};
+  EXPECT_TRUE(meets(triangles(v, twice)));
+  // Going round once (the first three), the star is flat and meets nothing;
+  // nor does a closed pyramid, whose apex's star is flat along z.
+  EXPECT_FALSE(meets(triangles(v, {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}})));
+  const std::vector<Vec3> p = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 0.5, 1}};
+  const std::vector<IndexRing> pyramid = {{0, 2, 1}, {0, 3, 2}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  EXPECT_FALSE(meets(triangles(p, pyramid)));
+}
+
+TEST(SelfContact, ComponentsAnsweredTogetherAsAlone) {
+  // Several components in one call: each answered as it would be alone (the
+  // vertex numbering shared between them is left as found).
+  const Scene tube = read_scene(std::string(VISMAP_DATA_DIR) + "/tube_through_itself.off");
+  const WorldFacets wf = make_world_facets(tube);
+  std::vector<int> all(wf.facets.size()), half(wf.facets.size() / 2);
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  for (std::size_t i = 0; i < half.size(); ++i) half[i] = static_cast<int>(i);
+  const std::vector<std::vector<int>> parts = {half, all, {}, all, half};
+  std::vector<char> alone;
+  for (const auto& part : parts) alone.push_back(meets_itself(tube, wf, part));
+  EXPECT_EQ(meets_itself(tube, wf, parts), alone);
+  EXPECT_EQ(alone[1], 1);
 }
 
 }  // namespace
