@@ -368,11 +368,6 @@ namespace {
 // No rows (an item left out of items_by_row).
 constexpr std::array<int, 2> kNoRows{1, 0};
 
-// Rows y0 .. y1 of the cells box b reaches.
-std::array<int, 2> rows_of_box(const Grid& g, const CGAL::Bbox_2& b) {
-  return {g.Y.index(b.ymin()), g.Y.index(b.ymax())};
-}
-
 // The items (facets or curves, by index, in index order) whose box reaches each
 // row of cells, side by side: row r's are items[first[r] .. first[r + 1]). The
 // rows then fill their cells in parallel: a cell sees its items in index order,
@@ -1035,8 +1030,13 @@ namespace {
 template <class Take, class Into>
 std::int64_t bucket(Grid& g, const ScreenScene& ss, int threads, Take&& take, Into&& into, std::int64_t& listed) {
   const int nc = static_cast<int>(ss.curves.size());
-  const ItemsByRow rows =
-      items_by_row(g, nc, threads, [&](int ci) { return take(ci) ? rows_of_box(g, ss.curves[ci].box) : kNoRows; });
+  // Each curve's cells, once (a long curve is met again in every row it crosses).
+  std::vector<CellRange> range(ss.curves.size());
+  const ItemsByRow rows = items_by_row(g, nc, threads, [&](int ci) {
+    if (!take(ci)) return kNoRows;
+    const CellRange& r = range[static_cast<std::size_t>(ci)] = range_of(g, ss.curves[ci].box);
+    return std::array<int, 2>{r.y0, r.y1};
+  });
   std::vector<std::vector<int>> kept_by_row(rows.size());
   std::vector<std::int64_t> listed_by_row(rows.size(), 0);
   parallel_for(g.Y.cells(), threads, [&](int iy) {
@@ -1046,7 +1046,7 @@ std::int64_t bucket(Grid& g, const ScreenScene& ss, int threads, Take&& take, In
     std::int64_t listed_here = 0;
     for (int ci : rows[row]) {
       const Curve& cv = ss.curves[ci];
-      const CellRange r = range_of(g, cv.box);
+      const CellRange& r = range[static_cast<std::size_t>(ci)];
       bool kept = false;
       for (int ix = r.x0; ix <= r.x1; ++ix) {
         if (!into(ix, iy)) continue;
