@@ -282,11 +282,13 @@ int Axis::index(double v) const {
   const int k = t > 0 ? (t < bins ? static_cast<int>(t) : bins - 1) : 0;   // (NaN: 0)
   // The cell is among first_[k] .. first_[k + 1] (unless rounding put v in a
   // neighbouring bin: the steps below then correct it).
-  int i = first_[static_cast<std::size_t>(k)], j = first_[static_cast<std::size_t>(k) + 1];
-  while (i < j) {
-    const int m = (i + j + 1) / 2;
-    if (bounds_[static_cast<std::size_t>(m)] <= v) i = m;
-    else j = m - 1;
+  // (Halving without a branch on the comparison: in a crowded bin, a close-up's
+  // many small cells, the searches' outcomes are as good as random.)
+  int i = first_[static_cast<std::size_t>(k)];
+  for (int n = first_[static_cast<std::size_t>(k) + 1] - i + 1; n > 1;) {
+    const int half = n / 2;
+    i = bounds_[static_cast<std::size_t>(i + half)] <= v ? i + half : i;
+    n -= half;
   }
   while (i > 0 && v < bounds_[static_cast<std::size_t>(i)]) --i;
   while (i < last && v >= bounds_[static_cast<std::size_t>(i) + 1]) ++i;
