@@ -594,7 +594,7 @@ NearCut near_cut(const ScreenScene& ss, const CurveMaker& M, const std::vector<s
 // itself: facets of the other components stay occluders. The facets of those
 // that do not are marked as parts of a solid (ScreenScene::solid).
 void keep_where_meeting_itself(std::vector<char>& hidden, const ClosedComponents& cc, const CurveMaker& M,
-                               std::vector<int>& solid) {
+                               std::vector<int>& solid, int threads) {
   const std::size_t n = hidden.size();
   std::vector<int> slot(n, -1);   // per component with a hidden facet: its list
   std::vector<std::vector<int>> members;
@@ -608,7 +608,7 @@ void keep_where_meeting_itself(std::vector<char>& hidden, const ClosedComponents
   for (std::size_t fi = 0; fi < n; ++fi)
     if (const int k = slot[static_cast<std::size_t>(cc.component[fi])]; k >= 0)
       members[static_cast<std::size_t>(k)].push_back(static_cast<int>(fi));
-  const std::vector<char> meets = meets_itself(*M.scene, M.wf, members);
+  const std::vector<char> meets = meets_itself(*M.scene, M.wf, members, threads);
   for (std::size_t k = 0; k < members.size(); ++k) {
     for (int fi : members[k]) {
       if (meets[k]) hidden[static_cast<std::size_t>(fi)] = 0;
@@ -623,7 +623,7 @@ void keep_where_meeting_itself(std::vector<char>& hidden, const ClosedComponents
 // one starts inside (its image within a cap), the facets seen from the front.
 // They stop being occluders (counted).
 void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& view, const std::vector<std::int8_t>& zsign,
-                     const ClosedComponents& cc, Stats& stats) {
+                     const ClosedComponents& cc, int threads, Stats& stats) {
   const std::size_t n = ss.facets.size();
   std::vector<NearCap> caps;
   if (view.perspective) {
@@ -661,7 +661,7 @@ void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& vie
       point[fi] = &ss.facets[fi].v[0].xy();
     }
     hidden_front = inside_caps(cc, cut.segments, candidate, facet_box, point);
-    keep_where_meeting_itself(hidden_front, cc, M, ss.solid);
+    keep_where_meeting_itself(hidden_front, cc, M, ss.solid, threads);
   }
   std::int64_t back = 0, front = 0;
   for (std::size_t fi = 0; fi < n; ++fi) {
@@ -890,7 +890,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   stats.count("culled_outside_view", outside);
   stats.count("culled_edge_on", edge_on);
 
-  if (cull) cull_by_closed_solids(ss, M, view, zsign, closed, stats);
+  if (cull) cull_by_closed_solids(ss, M, view, zsign, closed, threads, stats);
 
   M.look.resize(ss.facets.size());
   for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) {

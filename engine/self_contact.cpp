@@ -6,9 +6,11 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 
+#include "engine/parallel.h"
 #include "engine/world_exact.h"
 
 namespace vismap::engine {
@@ -67,7 +69,7 @@ class FlatStars {
   static double coordinate(const Vec3& p, int k) { return k == 0 ? p.x : k == 1 ? p.y : p.z; }
 
  public:
-  explicit FlatStars(const Fans& fans) : flat_(fans.vertices, 0) {
+  FlatStars(const Fans& fans, int threads) : flat_(fans.vertices, 0) {
     // Each vertex's triangles (compressed rows, by local number).
     const std::vector<Triangle>& tris = fans.tris;
     const std::size_t vertices = fans.vertices;
@@ -78,9 +80,10 @@ class FlatStars {
     std::vector<std::uint32_t> at(first.begin(), first.end() - 1), of(first.back());
     for (std::size_t i = 0; i < tris.size(); ++i)
       for (auto v : tris[i].local) of[at[v]++] = static_cast<std::uint32_t>(i);
-    for (std::size_t v = 0; v < vertices; ++v)
-      if (first[v + 1] > first[v])
-        flat_[v] = flat(tris, v, of.data() + first[v], first[v + 1] - first[v]);
+    parallel_chunks(static_cast<int>(vertices), 4096, threads, [&](int, Chunk r) {
+      for (auto v = static_cast<std::size_t>(r.begin); v < static_cast<std::size_t>(r.end); ++v)
+        if (first[v + 1] > first[v]) flat_[v] = flat(tris, v, of.data() + first[v], first[v + 1] - first[v]);
+    });
   }
   // Whether the star of the vertex numbered v (Triangle::local) is flat: then
   // two of its triangles meet only at v and along an edge they share.
@@ -201,8 +204,10 @@ bool meet(const Triangle& a, const Triangle& b, const world::PlaneSide& plane_a,
 // Pairs of boxes that meet (closed boxes), each once, until `f` returns true: a
 // uniform grid of about one cell per box, each box listed in the cells it
 // meets; a pair is taken in the cell of the lower corner of its common box.
+// Chunks of cells on `threads` threads (the answer is whether any pair does:
+// the same whichever finds it).
 template <class F>
-bool any_box_pair(const std::vector<CGAL::Bbox_3>& boxes, F&& f) {
+bool any_box_pair(const std::vector<CGAL::Bbox_3>& boxes, int threads, F&& f) {
   const std::size_t n = boxes.size();
   if (n < 2) return false;
   CGAL::Bbox_3 all = boxes[0];
@@ -260,26 +265,34 @@ bool any_box_pair(const std::vector<CGAL::Bbox_3>& boxes, F&& f) {
     for_cells(range[i], [&](std::size_t c) { member[fill[c]++] = static_cast<std::uint32_t>(i); });
   // In each cell, its boxes by their lower x: a box meets only those after it
   // that start before it ends.
-  for (std::size_t c = 0; c < cells; ++c) {
-    const auto first = member.begin() + start[c], last = member.begin() + start[c + 1];
-    std::sort(first, last, [&](std::uint32_t i, std::uint32_t j) { return boxes[i].xmin() < boxes[j].xmin(); });
-    for (auto s = first; s != last; ++s) {
-      const CGAL::Bbox_3& a = boxes[*s];
-      const Cells& ra = range[*s];
-      for (auto t = s + 1; t != last && boxes[*t].xmin() <= a.xmax(); ++t) {
-        const CGAL::Bbox_3& b = boxes[*t];
-        if (a.ymax() < b.ymin() || b.ymax() < a.ymin() || a.zmax() < b.zmin() || b.zmax() < a.zmin()) continue;
-        const Cells& rb = range[*t];
-        const std::size_t home = index(std::max(ra.lo[0], rb.lo[0]), std::max(ra.lo[1], rb.lo[1]), std::max(ra.lo[2], rb.lo[2]));
-        if (home == c && f(*s, *t)) return true;
+  std::atomic<bool> found{false};
+  parallel_chunks(static_cast<int>(cells), 1024, threads, [&](int, Chunk r) {
+    for (auto c = static_cast<std::size_t>(r.begin); c < static_cast<std::size_t>(r.end); ++c) {
+      if (found.load(std::memory_order_relaxed)) return;
+      const auto first = member.begin() + start[c], last = member.begin() + start[c + 1];
+      std::sort(first, last, [&](std::uint32_t i, std::uint32_t j) { return boxes[i].xmin() < boxes[j].xmin(); });
+      for (auto s = first; s != last; ++s) {
+        const CGAL::Bbox_3& a = boxes[*s];
+        const Cells& ra = range[*s];
+        for (auto t = s + 1; t != last && boxes[*t].xmin() <= a.xmax(); ++t) {
+          const CGAL::Bbox_3& b = boxes[*t];
+          if (a.ymax() < b.ymin() || b.ymax() < a.ymin() || a.zmax() < b.zmin() || b.zmax() < a.zmin()) continue;
+          const Cells& rb = range[*t];
+          const std::size_t home =
+              index(std::max(ra.lo[0], rb.lo[0]), std::max(ra.lo[1], rb.lo[1]), std::max(ra.lo[2], rb.lo[2]));
+          if (home == c && f(*s, *t)) {
+            found.store(true, std::memory_order_relaxed);
+            return;
+          }
+        }
       }
     }
-  }
-  return false;
+  });
+  return found.load();
 }
 
 // Whether the triangles of one component meet other than where they share corners.
-bool meets(const Fans& fans) {
+bool meets(const Fans& fans, int threads) {
   const std::vector<Triangle>& tris = fans.tris;
   std::vector<CGAL::Bbox_3> boxes;
   std::vector<world::PlaneSide> planes;   // (each triangle's normal once, for the side tests)
@@ -291,8 +304,8 @@ bool meets(const Fans& fans) {
     boxes.push_back(b);
     planes.emplace_back(*t.corner[0], *t.corner[1], *t.corner[2]);
   }
-  const FlatStars stars(fans);
-  return any_box_pair(boxes, [&](std::uint32_t i, std::uint32_t j) {
+  const FlatStars stars(fans, threads);
+  return any_box_pair(boxes, threads, [&](std::uint32_t i, std::uint32_t j) {
     return tris[i].facet != tris[j].facet && !share_flat_star(tris[i], tris[j], stars) &&
            meet(tris[i], tris[j], planes[i], planes[j]);
   });
@@ -300,16 +313,17 @@ bool meets(const Fans& fans) {
 
 }  // namespace
 
-std::vector<char> meets_itself(const Scene& scene, const WorldFacets& wf, const std::vector<std::vector<int>>& components) {
+std::vector<char> meets_itself(const Scene& scene, const WorldFacets& wf, const std::vector<std::vector<int>>& components,
+                               int threads) {
   std::vector<std::uint32_t> slot(scene.vertices.size(), ~0u);   // (one table for all, left as found)
   std::vector<char> out;
   out.reserve(components.size());
-  for (const std::vector<int>& facets : components) out.push_back(meets(fans(scene, wf, facets, slot)));
+  for (const std::vector<int>& facets : components) out.push_back(meets(fans(scene, wf, facets, slot), threads));
   return out;
 }
 
-bool meets_itself(const Scene& scene, const WorldFacets& wf, const std::vector<int>& facets) {
-  return meets_itself(scene, wf, std::vector<std::vector<int>>{facets})[0] != 0;
+bool meets_itself(const Scene& scene, const WorldFacets& wf, const std::vector<int>& facets, int threads) {
+  return meets_itself(scene, wf, std::vector<std::vector<int>>{facets}, threads)[0] != 0;
 }
 
 }  // namespace vismap::engine

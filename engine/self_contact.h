@@ -16,8 +16,10 @@ namespace vismap::engine {
 // component) meet other than at the corners they share (by canonical vertex id)
 // and along the edges between those. Facets with collinear corners are taken as
 // their fans' non-degenerate triangles.
-bool meets_itself(const Scene& scene, const WorldFacets& wf, const std::vector<int>& facets);
+// On `threads` threads.
+bool meets_itself(const Scene& scene, const WorldFacets& wf, const std::vector<int>& facets, int threads = 1);
 // The same for each of several components, in one pass (per component: 1 if it meets itself).
-std::vector<char> meets_itself(const Scene& scene, const WorldFacets& wf, const std::vector<std::vector<int>>& components);
+std::vector<char> meets_itself(const Scene& scene, const WorldFacets& wf, const std::vector<std::vector<int>>& components,
+                               int threads = 1);
 
 }  // namespace vismap::engine

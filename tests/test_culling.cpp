@@ -129,7 +129,7 @@ TEST(SelfContact, StarsThatGoRoundTwiceAreTested) {
 
 TEST(SelfContact, ComponentsAnsweredTogetherAsAlone) {
   // Several components in one call: each answered as it would be alone (the
-  // vertex numbering shared between them is left as found).
+  // vertex numbering shared between them is left as found), on any threads.
   const Scene tube = read_scene(std::string(VISMAP_DATA_DIR) + "/tube_through_itself.off");
   const WorldFacets wf = make_world_facets(tube);
   std::vector<int> all(wf.facets.size()), half(wf.facets.size() / 2);
@@ -138,7 +138,7 @@ TEST(SelfContact, ComponentsAnsweredTogetherAsAlone) {
   const std::vector<std::vector<int>> parts = {half, all, {}, all, half};
   std::vector<char> alone;
   for (const auto& part : parts) alone.push_back(meets_itself(tube, wf, part));
-  EXPECT_EQ(meets_itself(tube, wf, parts), alone);
+  for (int threads : {1, 2, 3}) EXPECT_EQ(meets_itself(tube, wf, parts, threads), alone);
   EXPECT_EQ(alone[1], 1);
 }
 
