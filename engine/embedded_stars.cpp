@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "engine/parallel.h"
+#include "engine/star_link.h"
 
 namespace vismap::engine {
 VISMAP_KERNEL_BEGIN
@@ -129,38 +130,11 @@ class ImageHeights {
 };
 
 // Whether the triangles of link edges e[0..n) around the vertex with image
-// place v tile a disk around it on the screen: their link edges make one
-// closed cycle, and that cycle goes round v once. Every triangle turns
-// positively about v, so the winding number is the number of link edges that
-// cross v's horizontal line upwards (each such crossing lies right of v; the
-// half-open rule counts a vertex on the line once). Stars of more than
-// kMaxStar triangles are not told (rare on meshes; a fan's hub is a polygon's).
-constexpr std::size_t kMaxStar = 32;
+// place v tile a disk around it on the screen (engine/star_link.h).
 bool embedded(const LinkEdge* e, std::size_t n, std::uint32_t v, const ImageHeights& heights) {
-  if (n < 3 || n > kMaxStar) return false;
-  // One cycle: every link vertex starts one edge and ends one, and following
-  // the edges from the first comes back to it after all n.
-  std::size_t next[kMaxStar];
-  for (std::size_t i = 0; i < n; ++i) {
-    std::size_t found = n;
-    for (std::size_t j = 0; j < n; ++j) {
-      if (j != i && e[j].a == e[i].a) return false;
-      if (e[j].a == e[i].b) found = j;
-    }
-    if (found == n) return false;
-    next[i] = found;
-  }
-  std::size_t at = 0;
-  for (std::size_t steps = 1; steps < n; ++steps) {
-    at = next[at];
-    if (at == 0) return false;
-  }
-  if (next[at] != 0) return false;
-  bool below[kMaxStar];
-  for (std::size_t i = 0; i < n; ++i) below[i] = heights.on_or_below(e[i].a, v);
-  int upward = 0;
-  for (std::size_t i = 0; i < n; ++i) upward += below[i] && !below[next[i]];
-  return upward == 1;
+  return goes_round_once(
+      n, [&](std::size_t i) { return e[i].a; }, [&](std::size_t i) { return e[i].b; },
+      [&](std::size_t i) { return heights.on_or_below(e[i].a, v); });
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <cstdint>
 
 #include "engine/parallel.h"
+#include "engine/star_link.h"
 #include "engine/world_exact.h"
 
 namespace vismap::engine {
@@ -90,13 +91,12 @@ class FlatStars {
   bool at(std::uint32_t v) const { return flat_[v] != 0; }
 
  private:
-  static constexpr std::size_t kMaxStar = 32;
   struct Link {   // the side a -> b of a triangle (v, a, b) turning positively
     const Vec3* a;   // (a's point; b's is the next link's a)
     std::uint32_t ia, ib;
   };
   static bool flat(const std::vector<Triangle>& tris, std::size_t v, const std::uint32_t* star, std::size_t n) {
-    if (n < 3 || n > kMaxStar) return false;
+    if (n < 3 || n > kMaxStar) return false;   // (as goes_round_once would say)
     // The axis to look along: the first triangle's normal's largest component
     // (doubles: any axis gives an exact answer; this one makes flat stars likely).
     const Triangle& t0 = tris[star[0]];
@@ -117,30 +117,11 @@ class FlatStars {
       if (o == CGAL::COLLINEAR) return false;
       e[i] = o == CGAL::LEFT_TURN ? Link{t.corner[ka], t.v[ka], t.v[kb]} : Link{t.corner[kb], t.v[kb], t.v[ka]};
     }
-    // One cycle: following each edge by one that starts where it ends, from
-    // the first, comes back to it after all n. (Then no two start at one link
-    // vertex: both would follow the same edge.)
-    std::size_t next[kMaxStar];
-    for (std::size_t i = 0; i < n; ++i) {
-      std::size_t j = 0;
-      while (j < n && e[j].ia != e[i].ib) ++j;
-      if (j == n) return false;
-      next[i] = j;
-    }
-    std::size_t at = 0;
-    for (std::size_t steps = 1; steps < n; ++steps) {
-      at = next[at];
-      if (at == 0) return false;
-    }
-    if (next[at] != 0) return false;
-    // Winding number 1: every triangle turns positively about v, so it is the
-    // number of link edges crossing v's horizontal line upwards (each right of
-    // v; the half-open rule counts a link vertex on the line once).
+    // Going round v once, seen along the axis (engine/star_link.h).
     const double y = coordinate(*centre, uy);
-    int upward = 0;
-    for (std::size_t i = 0; i < n; ++i)
-      upward += coordinate(*e[i].a, uy) <= y && !(coordinate(*e[next[i]].a, uy) <= y);
-    return upward == 1;
+    return goes_round_once(
+        n, [&](std::size_t i) { return e[i].ia; }, [&](std::size_t i) { return e[i].ib; },
+        [&](std::size_t i) { return coordinate(*e[i].a, uy) <= y; });
   }
   std::vector<char> flat_;
 };
