@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 
@@ -128,29 +129,47 @@ bool cells_from_intervals(const Vec3& p, const Vec3& q, int k, const Cells& cell
 }
 
 
-// Facet edges grouped by their (unordered) vertex pair: group g's edges are
-// order[start[g] .. start[g+1]), in facet order; groups in order of (lower
-// vertex, higher vertex).
+// Facet edges grouped by their (unordered) vertex pair: group g is
+// edges[start[g] .. start[g+1]), in facet order; groups in order of (lower
+// vertex, higher vertex). The edges are made straight into their places, so
+// that every later pass reads a group's edges side by side.
 struct EdgeGroups {
-  std::vector<std::uint32_t> order;
+  std::vector<Edge> edges;
   std::vector<std::size_t> start;
 };
 
-EdgeGroups group_by_vertex_pair(const std::vector<Edge>& edges, std::size_t nvertices, int threads) {
-  auto lower = [](const Edge& e) { return std::min(e.p, e.q); };
-  auto higher = [](const Edge& e) { return std::max(e.p, e.q); };
-  // Counting sort by the lower vertex, stable: each part of the edges counts its
-  // own; part k's edges of vertex v go after those of parts before k.
-  const int parts = std::max(1, std::min<int>(threads, static_cast<int>(edges.size() / 65536)));
-  auto part = [&](int k) { return edges.size() * static_cast<std::size_t>(k) / static_cast<std::size_t>(parts); };
+// Facet f's edge i (p != q).
+Edge edge_of(const Scene& scene, const WorldFacets& wf, int f, std::size_t i) {
+  const auto& v = wf.facets[static_cast<std::size_t>(f)].v;
+  const std::uint32_t p = v[i], q = v[(i + 1) % v.size()];
+  const Vec3 &a = scene.vertices[p], &b = scene.vertices[q];
+  const std::uint8_t axis = a.x != b.x ? 0 : a.y != b.y ? 1 : 2;
+  return Edge{f, static_cast<std::uint32_t>(i), axis, coord(a, axis) < coord(b, axis), p, q};
+}
+
+EdgeGroups group_by_vertex_pair(const Scene& scene, const WorldFacets& wf, int threads) {
+  const std::size_t nvertices = scene.vertices.size();
+  const int nf = static_cast<int>(wf.facets.size());
+  std::size_t nedges = 0;
+  for (const WorldFacet& f : wf.facets) nedges += f.v.size();
+  // Counting sort by the lower vertex, stable: each part of the facets counts its
+  // own edges; part k's edges of vertex v go after those of parts before k.
+  const int parts = std::max(1, std::min<int>(threads, static_cast<int>(nedges / 65536)));
+  auto part = [&](int k) { return static_cast<int>(static_cast<long>(nf) * k / parts); };
   auto vertices = [&](int k) { return nvertices * static_cast<std::size_t>(k) / static_cast<std::size_t>(parts); };
+  auto each_lower = [&](int k, auto&& body) {
+    for (int f = part(k); f < part(k + 1); ++f) {
+      const auto& v = wf.facets[static_cast<std::size_t>(f)].v;
+      for (std::size_t i = 0; i < v.size(); ++i) body(f, i, std::min(v[i], v[(i + 1) % v.size()]));
+    }
+  };
   std::vector<std::vector<std::uint32_t>> count(static_cast<std::size_t>(parts));
   parallel_for(parts, threads, [&](int k) {
     std::vector<std::uint32_t> c(nvertices, 0);
-    for (std::size_t i = part(k); i < part(k + 1); ++i) ++c[lower(edges[i])];
+    each_lower(k, [&](int, std::size_t, std::uint32_t lo) { ++c[lo]; });
     count[static_cast<std::size_t>(k)] = std::move(c);
   });
-  std::vector<std::uint32_t> first(nvertices + 1, 0);   // vertex v's edges: order[first[v] .. first[v+1])
+  std::vector<std::uint32_t> first(nvertices + 1, 0);   // vertex v's edges: edges[first[v] .. first[v+1])
   for (std::size_t v = 0; v < nvertices; ++v) {
     std::uint32_t at = first[v];
     for (auto& c : count) {   // (c[v] becomes the part's next place)
@@ -161,19 +180,20 @@ EdgeGroups group_by_vertex_pair(const std::vector<Edge>& edges, std::size_t nver
     first[v + 1] = at;
   }
   EdgeGroups g;
-  g.order.resize(edges.size());
+  g.edges.resize(nedges);
   parallel_for(parts, threads, [&](int k) {
     std::vector<std::uint32_t>& next = count[static_cast<std::size_t>(k)];
-    for (std::size_t i = part(k); i < part(k + 1); ++i) g.order[next[lower(edges[i])]++] = static_cast<std::uint32_t>(i);
+    each_lower(k, [&](int f, std::size_t i, std::uint32_t lo) { g.edges[next[lo]++] = edge_of(scene, wf, f, i); });
   });
   // Each vertex's edges by the higher vertex (stable), and where the groups start;
   // parts of the vertices in parallel.
+  auto higher = [](const Edge& e) { return std::max(e.p, e.q); };
   std::vector<std::vector<std::size_t>> starts(static_cast<std::size_t>(parts));
   parallel_for(parts, threads, [&](int k) {
     std::vector<std::size_t> mine;
     for (std::size_t v = vertices(k); v < vertices(k + 1); ++v) {
-      const auto b = g.order.begin() + first[v], e = g.order.begin() + first[v + 1];
-      auto by_higher = [&](std::uint32_t x, std::uint32_t y) { return higher(edges[x]) < higher(edges[y]); };
+      const auto b = g.edges.begin() + first[v], e = g.edges.begin() + first[v + 1];
+      auto by_higher = [&](const Edge& x, const Edge& y) { return higher(x) < higher(y); };
       if (e - b <= 16) {   // (insertion sort: most vertices have a handful of edges)
         for (auto i = b; i != e; ++i)
           for (auto j = i; j != b && by_higher(*j, *(j - 1)); --j) std::iter_swap(j, j - 1);
@@ -181,7 +201,7 @@ EdgeGroups group_by_vertex_pair(const std::vector<Edge>& edges, std::size_t nver
         std::stable_sort(b, e, by_higher);
       }
       for (auto i = b; i != e; ++i)
-        if (i == b || higher(edges[*i]) != higher(edges[*(i - 1)])) mine.push_back(static_cast<std::size_t>(i - g.order.begin()));
+        if (i == b || higher(*i) != higher(*(i - 1))) mine.push_back(static_cast<std::size_t>(i - g.edges.begin()));
     }
     starts[static_cast<std::size_t>(k)] = std::move(mine);
   });
@@ -189,7 +209,7 @@ EdgeGroups group_by_vertex_pair(const std::vector<Edge>& edges, std::size_t nver
   for (const auto& m : starts) ngroups += m.size();
   g.start.reserve(ngroups + 1);
   for (const auto& m : starts) g.start.insert(g.start.end(), m.begin(), m.end());
-  g.start.push_back(edges.size());
+  g.start.push_back(nedges);
   return g;
 }
 
@@ -256,23 +276,6 @@ MatchedEdges in_facet_order(std::vector<MatchedEdges>& found, std::size_t nfacet
 
 MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int cell_bits, int threads) {
   const Cells cells(cell_bits);
-  // Every facet edge, in facet order (chunks of facets in parallel, each edge
-  // in its slot: start[f] is facet f's first).
-  const int nf = static_cast<int>(wf.facets.size());
-  std::vector<std::size_t> start(static_cast<std::size_t>(nf) + 1, 0);
-  for (int f = 0; f < nf; ++f) start[f + 1] = start[f] + wf.facets[f].v.size();
-  std::vector<Edge> edges(start[nf]);
-  parallel_chunks(nf, 4096, threads, [&](int, Chunk r) {
-    for (int f = r.begin; f < r.end; ++f) {
-      const auto& v = wf.facets[f].v;
-      for (std::size_t i = 0; i < v.size(); ++i) {
-        const std::uint32_t p = v[i], q = v[(i + 1) % v.size()];
-        const Vec3 &a = scene.vertices[p], &b = scene.vertices[q];
-        const std::uint8_t axis = a.x != b.x ? 0 : a.y != b.y ? 1 : 2;   // (p != q)
-        edges[start[f] + i] = Edge{f, static_cast<std::uint32_t>(i), axis, coord(a, axis) < coord(b, axis), p, q};
-      }
-    }
-  });
   auto vertex = [&](std::uint32_t id) -> const Vec3& { return scene.vertices[id]; };
   auto exact_key = [&](const Edge& e) {
     // Keyed from the lower vertex id so that both directions build the same numbers.
@@ -284,9 +287,10 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
   // one group: they lie on one line, so their line's cells are found once.
   // Counting sort by the lower vertex, then by the higher within it; stable, so a
   // group's edges stay in facet order.
-  const EdgeGroups groups = group_by_vertex_pair(edges, scene.vertices.size(), threads);
+  const EdgeGroups groups = group_by_vertex_pair(scene, wf, threads);
+  const std::vector<Edge>& edges = groups.edges;
   const std::size_t ngroups = groups.start.size() - 1;
-  auto group_edge = [&](std::size_t g) -> const Edge& { return edges[groups.order[groups.start[g]]]; };
+  auto group_edge = [&](std::size_t g) -> const Edge& { return edges[groups.start[g]]; };
 
   // Each group's line cells, in parallel.
   std::vector<std::uint64_t> cells_at(ngroups);
@@ -395,61 +399,92 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
   // line's cells, then its place in the run's sweeps (the order of one pass over the runs).
   using Rank = PieceRank;
   using Found = MatchedEdges;
-  // The pieces of groups [from, to): a group alone in its cells is one piece (its
-  // edges, any number, lie between the same two vertices); a run's first group
-  // makes the pieces of every group of the run, told apart by exact keys.
-  auto pieces_of_groups = [&](std::size_t from, std::size_t to, Scratch& w, Found& out) {
-    for (std::size_t g = from; g < to; ++g) {
-      if (run_at[g] == alone) {
-        const Edge& e = group_edge(g);
-        WorldPiece piece{e.forward ? e.p : e.q, e.forward ? e.q : e.p, {}};
-        for (std::size_t i = groups.start[g]; i < groups.start[g + 1]; ++i)
-          piece.sharers.push_back(sharer(edges[groups.order[i]]));   // (in facet order)
-        out.pieces.push_back(std::move(piece));
-        out.rank.push_back(Rank{cells_at[g], 0});
-        continue;
-      }
-      if (run_at[g] == in_run) continue;
-      auto& keyed = w.keyed;
-      keyed.clear();
-      const std::size_t lo = run_at[g];
-      for (std::size_t s = lo; s < ngroups && slots[s].hash == slots[lo].hash; ++s) {
-        const std::uint32_t h = slots[s].group;
-        for (std::size_t i = groups.start[h]; i < groups.start[h + 1]; ++i)
-          keyed.emplace_back(exact_key(edges[groups.order[i]]), groups.order[i]);
-      }
-      std::sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) {
-        if (key_less(x.first, y.first)) return true;
-        if (key_less(y.first, x.first)) return false;
-        return x.second < y.second;
-      });
-      const std::size_t first = out.pieces.size();
-      for (std::size_t a = 0; a < keyed.size();) {
-        std::size_t b = a + 1;
-        while (b < keyed.size() && !key_less(keyed[a].first, keyed[b].first)) ++b;
-        w.group.clear();
-        for (std::size_t i = a; i < b; ++i) w.group.push_back(keyed[i].second);
-        sweep_line(w.group.data(), w.group.size(), w, out.pieces);
-        a = b;
-      }
-      for (std::size_t i = first; i < out.pieces.size(); ++i)
-        out.rank.push_back(Rank{cells_at[g], static_cast<std::uint32_t>(i - first)});
-    }
+  // A group alone in its cells is one piece (its edges, any number, lie between
+  // the same two vertices; the first is its first sharer: they are in facet order).
+  auto alone_piece = [&](std::size_t g) {
+    const Edge& e = group_edge(g);
+    WorldPiece piece{e.forward ? e.p : e.q, e.forward ? e.q : e.p, {}};
+    for (std::size_t i = groups.start[g]; i < groups.start[g + 1]; ++i) piece.sharers.push_back(sharer(edges[i]));
+    return piece;
   };
-  // Chunks of groups in parallel.
+  // A run's first group makes the pieces of every group of the run, told apart
+  // by exact keys.
+  auto pieces_of_run = [&](std::size_t g, Scratch& w, Found& out) {
+    auto& keyed = w.keyed;
+    keyed.clear();
+    const std::size_t lo = run_at[g];
+    for (std::size_t s = lo; s < ngroups && slots[s].hash == slots[lo].hash; ++s) {
+      const std::uint32_t h = slots[s].group;
+      for (std::size_t i = groups.start[h]; i < groups.start[h + 1]; ++i)
+        keyed.emplace_back(exact_key(edges[i]), static_cast<std::uint32_t>(i));
+    }
+    std::sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) {
+      if (key_less(x.first, y.first)) return true;
+      if (key_less(y.first, x.first)) return false;
+      return x.second < y.second;
+    });
+    const std::size_t first = out.pieces.size();
+    for (std::size_t a = 0; a < keyed.size();) {
+      std::size_t b = a + 1;
+      while (b < keyed.size() && !key_less(keyed[a].first, keyed[b].first)) ++b;
+      w.group.clear();
+      for (std::size_t i = a; i < b; ++i) w.group.push_back(keyed[i].second);
+      sweep_line(w.group.data(), w.group.size(), w, out.pieces);
+      a = b;
+    }
+    for (std::size_t i = first; i < out.pieces.size(); ++i)
+      out.rank.push_back(Rank{cells_at[g], static_cast<std::uint32_t>(i - first)});
+  };
+  // The runs' pieces, chunks of groups in parallel (runs are rare: lines that
+  // several vertex pairs share).
   const std::size_t nchunks = std::clamp<std::size_t>(ngroups / 8192, 1, 256);
-  std::vector<Found> found(nchunks);
+  auto chunk_of = [&](std::size_t k) { return std::pair(ngroups * k / nchunks, ngroups * (k + 1) / nchunks); };
+  std::vector<Found> runs(nchunks);
   parallel_for(static_cast<int>(nchunks), threads, [&](int c) {
     Scratch w;
-    const auto k = static_cast<std::size_t>(c);
-    const std::size_t from = ngroups * k / nchunks, to = ngroups * (k + 1) / nchunks;
     Found mine;   // (filled here, stored once: the chunks' slots share cache lines)
-    mine.pieces.reserve(to - from);
-    mine.rank.reserve(to - from);
-    pieces_of_groups(from, to, w, mine);
-    found[k] = std::move(mine);
+    const auto [from, to] = chunk_of(static_cast<std::size_t>(c));
+    for (std::size_t g = from; g < to; ++g)
+      if (run_at[g] != alone && run_at[g] != in_run) pieces_of_run(g, w, mine);
+    runs[static_cast<std::size_t>(c)] = std::move(mine);
   });
-  return in_facet_order(found, wf.facets.size(), threads);
+  // Every piece straight to its place among its first sharer's (facet order,
+  // then rank): each facet's pieces counted, then placed by a counter per facet
+  // in whatever order the threads come, then sorted by their ranks (distinct).
+  const std::size_t nfacets = wf.facets.size();
+  std::vector<std::uint32_t> next(nfacets + 1, 0);
+  auto take = [&](int facet) { return std::atomic_ref<std::uint32_t>(next[static_cast<std::size_t>(facet)]).fetch_add(1, std::memory_order_relaxed); };
+  parallel_for(static_cast<int>(nchunks), threads, [&](int c) {
+    const auto [from, to] = chunk_of(static_cast<std::size_t>(c));
+    for (std::size_t g = from; g < to; ++g)
+      if (run_at[g] == alone) take(group_edge(g).facet + 1);
+    for (const WorldPiece& p : runs[static_cast<std::size_t>(c)].pieces) take(p.sharers[0].facet + 1);
+  });
+  for (std::size_t f = 0; f < nfacets; ++f) next[f + 1] += next[f];
+  const std::vector<std::uint32_t> facet_start(next);
+  Found out;
+  out.pieces.resize(next.back());
+  out.rank.resize(next.back());
+  parallel_for(static_cast<int>(nchunks), threads, [&](int c) {
+    const auto [from, to] = chunk_of(static_cast<std::size_t>(c));
+    for (std::size_t g = from; g < to; ++g) {
+      if (run_at[g] != alone) continue;
+      const std::uint32_t at = take(group_edge(g).facet);
+      out.pieces[at] = alone_piece(g);
+      out.rank[at] = Rank{cells_at[g], 0};
+    }
+    Found& mine = runs[static_cast<std::size_t>(c)];
+    for (std::size_t i = 0; i < mine.pieces.size(); ++i) {
+      const std::uint32_t at = take(mine.pieces[i].sharers[0].facet);
+      out.pieces[at] = std::move(mine.pieces[i]);
+      out.rank[at] = mine.rank[i];
+    }
+  });
+  parallel_chunks(static_cast<int>(nfacets), 4096, threads, [&](int, Chunk r) {
+    for (auto f = static_cast<std::size_t>(r.begin); f < static_cast<std::size_t>(r.end); ++f)
+      sort_by_rank(out.pieces, out.rank, facet_start[f], facet_start[f + 1]);
+  });
+  return out;
 }
 
 std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, int cell_bits, int threads) {
