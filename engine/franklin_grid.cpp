@@ -993,6 +993,12 @@ void crossings_in_cell(const Grid& g, const ScreenScene& ss, const Listing& l, c
 // in parallel, each pair tested in the first cell that lists both; the lines
 // are appended in the order of their pairs.
 void add_intersection_lines(const Grid& g, ScreenScene& ss, int threads, Stats& stats) {
+  if (occluders_in_one_solid(ss)) {   // (no pair to test)
+    stats.count("embedded_stars", 0);
+    stats.count("facet_pairs_tested", 0);
+    stats.count("intersection_lines", 0);
+    return;
+  }
   const Listing l = listing_of(g, ss, threads);
   const EmbeddedStars stars(ss, threads, !occluders_all_in_solids(ss));
   std::vector<std::vector<Crossing>> by_row(static_cast<std::size_t>(g.Y.cells()));

@@ -12,6 +12,7 @@
 #include "engine/culling.h"
 #include "engine/edge_pieces.h"
 #include "engine/engine_run.h"
+#include "engine/height_fields.h"
 #include "engine/lazy_leaves.h"
 #include "engine/morton.h"
 #include "engine/parallel.h"
@@ -681,6 +682,21 @@ void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& vie
   stats.count("near_plane_caps", static_cast<std::int64_t>(caps.size()));
 }
 
+// Open surfaces that are graphs over a coordinate plane meet themselves nowhere
+// (engine/height_fields.h): their facets are marked as a solid's are
+// (ScreenScene::solid), and the piercing searches pass over their pairs.
+void mark_height_fields(ScreenScene& ss, const CurveMaker& M, const ClosedComponents& cc, int threads, Stats& stats) {
+  const std::vector<int> label = height_field_components(*M.scene, M.wf, M.pieces, cc.component, threads);
+  if (ss.solid.empty()) ss.solid.assign(ss.facets.size(), -1);
+  std::int64_t marked = 0;
+  for (std::size_t fi = 0; fi < label.size(); ++fi)
+    if (label[fi] >= 0) {
+      ss.solid[fi] = label[fi];
+      ++marked;
+    }
+  stats.count("height_field_facets", marked);
+}
+
 }  // namespace
 
 ScreenScene make_screen_scene(const Scene& scene, const View& view, const Options& opt,
@@ -890,7 +906,10 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   stats.count("culled_outside_view", outside);
   stats.count("culled_edge_on", edge_on);
 
-  if (cull) cull_by_closed_solids(ss, M, view, zsign, closed, threads, stats);
+  if (cull) {
+    cull_by_closed_solids(ss, M, view, zsign, closed, threads, stats);
+    mark_height_fields(ss, M, closed, threads, stats);
+  }
 
   M.look.resize(ss.facets.size());
   for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) {

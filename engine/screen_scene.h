@@ -149,9 +149,10 @@ struct ScreenScene {
   std::shared_ptr<const ExactSource> exact;   // (first: every lazy leaf refers to it)
   std::vector<P3> images;        // the used vertices' images (before the facets: they refer to them)
   std::vector<Facet> facets;
-  // Per facet: its closed component where that is known not to meet itself
-  // (engine/self_contact.h; tested where a near-plane cap culls from inside),
-  // else -1. Two facets of one such solid never pierce each other.
+  // Per facet: its component where that is known not to meet itself (a closed
+  // one, engine/self_contact.h, tested where a near-plane cap culls from inside;
+  // an open surface that is a graph over a plane, engine/height_fields.h), else
+  // -1. Two facets of one such solid never pierce each other.
   std::vector<int> solid;
   std::vector<Curve> curves;
   // Curve end points that are not vertex images (near-plane cuts, intersection-
@@ -174,6 +175,18 @@ inline bool occluders_all_in_solids(const ScreenScene& ss) {
   if (ss.solid.empty()) return false;
   for (std::size_t fi = 0; fi < ss.facets.size(); ++fi)
     if (ss.facets[fi].occluder && ss.solid[fi] < 0) return false;
+  return true;
+}
+// Whether every occluder is in one solid (a terrain alone): then no pair of
+// facets can pierce each other.
+inline bool occluders_in_one_solid(const ScreenScene& ss) {
+  if (ss.solid.empty()) return false;
+  int one = -1;
+  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) {
+    if (!ss.facets[fi].occluder) continue;
+    if (ss.solid[fi] < 0 || (one >= 0 && ss.solid[fi] != one)) return false;
+    one = ss.solid[fi];
+  }
   return true;
 }
 

@@ -1,6 +1,8 @@
 // Culling from inside a closed component (engine/cap_inside.h): which facets'
 // images lie inside the near plane's cut, told by parity, and whether a
-// component meets itself (engine/self_contact.h), where parity would be wrong.
+// component meets itself (engine/self_contact.h), where parity would be wrong;
+// and which open surfaces are certified never to meet themselves
+// (engine/height_fields.h), whose pairs the piercing search passes over.
 // The corpus (tests/data/cases.txt: tube_hook.off, tube_through_itself.off)
 // checks the maps; these check each step's answer where it is known by hand.
 #include <gtest/gtest.h>
@@ -9,6 +11,9 @@
 #include <vector>
 
 #include "engine/cap_inside.h"
+#include "engine/culling.h"
+#include "engine/edge_pieces.h"
+#include "engine/height_fields.h"
 #include "engine/self_contact.h"
 #include "engine/world_facets.h"
 
@@ -140,6 +145,117 @@ TEST(SelfContact, ComponentsAnsweredTogetherAsAlone) {
   for (const auto& part : parts) alone.push_back(meets_itself(tube, wf, part));
   for (int threads : {1, 2, 3}) EXPECT_EQ(meets_itself(tube, wf, parts, threads), alone);
   EXPECT_EQ(alone[1], 1);
+}
+
+// Per facet: its height-field label (or -1), on `threads` threads.
+std::vector<int> height_fields(const Scene& s, int threads = 1) {
+  const WorldFacets wf = make_world_facets(s);
+  const std::vector<WorldPiece> pieces = match_edges(s, wf);
+  const ClosedComponents cc = closed_components(s, wf, pieces);
+  return height_field_components(s, wf, pieces, cc.component, threads);
+}
+
+// Whether every facet is certified, and with one label (one component).
+bool all_certified(const std::vector<int>& label) {
+  return !label.empty() && label[0] >= 0 && std::all_of(label.begin(), label.end(), [&](int l) { return l == label[0]; });
+}
+bool none_certified(const std::vector<int>& label) {
+  return std::all_of(label.begin(), label.end(), [](int l) { return l < 0; });
+}
+
+// An n x n grid of squares over [0, 1]^2, two triangles each, heights z(x, y)
+// (`mirror`: every triangle wound the other way).
+Scene grid(int n, double (*z)(double, double), bool mirror = false) {
+  Scene s;
+  s.file = "grid";
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const double x = static_cast<double>(i) / n, y = static_cast<double>(j) / n;
+      s.vertices.push_back({x, y, z(x, y)});
+    }
+  auto id = [&](int i, int j) { return j * (n + 1) + i; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      IndexRing a{id(i, j), id(i + 1, j), id(i + 1, j + 1)}, b{id(i, j), id(i + 1, j + 1), id(i, j + 1)};
+      if (mirror) {
+        std::reverse(a.begin(), a.end());
+        std::reverse(b.begin(), b.end());
+      }
+      s.faces.push_back(a);
+      s.faces.push_back(b);
+    }
+  return s;
+}
+
+// A band of triangles round the z axis, radii 1 to 2 (`rings` rings of
+// vertices), from angle 0 to `turns` turns, heights z(angle, radius).
+Scene band(double turns, int rings, double (*z)(double, double)) {
+  Scene s;
+  s.file = "band";
+  const int steps = static_cast<int>(48 * turns);
+  for (int k = 0; k <= steps; ++k)
+    for (int r = 0; r < rings; ++r) {
+      const double t = 2 * M_PI * turns * k / steps, radius = 1 + static_cast<double>(r) / (rings - 1);
+      s.vertices.push_back({radius * std::cos(t), radius * std::sin(t), z(t, radius)});
+    }
+  // (A whole turn closes: its last ray is its first.)
+  auto id = [&](int k, int r) { return (turns == 1.0 && k == steps ? 0 : k) * rings + r; };
+  for (int k = 0; k < steps; ++k)
+    for (int r = 0; r + 1 < rings; ++r) {
+      s.faces.push_back({id(k, r), id(k, r + 1), id(k + 1, r + 1)});
+      s.faces.push_back({id(k, r), id(k + 1, r + 1), id(k + 1, r)});
+    }
+  return s;
+}
+
+TEST(HeightFields, TerrainsAreCertifiedWhicheverWayTheyTurn) {
+  auto hills = [](double x, double y) { return std::sin(7 * x) * std::cos(5 * y); };
+  for (bool mirror : {false, true})
+    for (int threads : {1, 2, 3}) EXPECT_TRUE(all_certified(height_fields(grid(12, hills, mirror), threads)));
+  // Seen along x rather than z: a wall whose x is a function of y and z.
+  Scene wall = grid(6, hills);
+  for (Vec3& p : wall.vertices) p = {p.z, p.x, p.y};
+  EXPECT_TRUE(all_certified(height_fields(wall)));
+  // A band of less than one turn is a height field over its annulus sector.
+  EXPECT_TRUE(all_certified(height_fields(band(0.75, 3, [](double t, double) { return t; }))));
+}
+
+TEST(HeightFields, SurfacesThatOverlapThemselvesAreNot) {
+  // A band of one and a half turns whose two sheets cross (they swap heights
+  // at radius 1.4, between the rings of vertices): it meets itself; every
+  // triangle turns positively along z and every star is flat there, but the
+  // boundary loop crosses itself.
+  const Scene crossing = band(1.5, 3, [](double t, double r) { return (t - 1.5 * M_PI) * (r - 1.4); });
+  EXPECT_TRUE(meets(crossing));
+  EXPECT_TRUE(none_certified(height_fields(crossing)));
+  // A ramp of one and a half turns meets itself nowhere, but its projection is
+  // not one to one: not certified either (the certificate is about the projection).
+  EXPECT_TRUE(none_certified(height_fields(band(1.5, 3, [](double t, double) { return t; }))));
+  // A closed ring (an annulus: Euler characteristic 0).
+  EXPECT_TRUE(none_certified(height_fields(band(1.0, 3, [](double, double) { return 0.0; }))));
+  // A sheet folded back over itself: the fold's triangles turn the other way.
+  Scene folded = grid(8, [](double, double) { return 0.0; });
+  for (Vec3& p : folded.vertices)
+    if (p.x > 0.5) p = {1.0 - p.x, p.y, 1.0 - 2 * (1.0 - p.x) + 0.5};
+  EXPECT_TRUE(none_certified(height_fields(folded)));
+}
+
+TEST(HeightFields, ComponentsSharingAVertexAreNot) {
+  // Two grids touching at one corner: each alone a terrain, together two
+  // components through one vertex (conservatively refused).
+  auto flat = [](double, double) { return 0.0; };
+  Scene a = grid(3, flat), b = grid(3, flat);
+  const auto base = static_cast<int>(a.vertices.size());
+  for (Vec3 p : b.vertices) a.vertices.push_back({p.x + 1, p.y + 1, 0.5});
+  a.vertices[static_cast<std::size_t>(base)] = a.vertices.back();   // (never used: b's (0, 0) is a's (1, 1) below)
+  for (IndexRing f : b.faces) {
+    for (auto& i : f) i = i == 0 ? 15 : i + base;
+    a.faces.push_back(f);
+  }
+  a.vertices[15] = {1, 1, 0};
+  const std::vector<int> label = height_fields(a);
+  EXPECT_TRUE(none_certified(label));
+  EXPECT_TRUE(all_certified(height_fields(grid(3, flat))));
 }
 
 }  // namespace

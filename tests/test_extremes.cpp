@@ -102,9 +102,18 @@ TEST(DoubleRange, BothEnginesAgreeAtEveryScaleAndOffset) {
 // does not translate: screen coordinates near 5e6), the engine does the same work
 // as at the origin: the boxes that pick grid cells and pairs keep their doubles
 // (as floats, where a step is 0.5, each of this terrain's boxes covered it all:
-// 100 times the pairs).
+// 100 times the pairs). Two terrains, the second the first upside down, crossing
+// it: each alone meets itself nowhere (engine/height_fields.h), the pairs of one
+// with the other are searched.
 TEST(DoubleRange, FarFromTheOriginTheWorkIsTheSame) {
-  const vismap::Scene here = vismap::gen::terrain(40, 7);
+  vismap::Scene here = vismap::gen::terrain(40, 7);
+  const vismap::Scene one = here;
+  const auto base = static_cast<int>(one.vertices.size());
+  for (const Vec3& v : one.vertices) here.vertices.push_back({v.x, v.y, -v.z});
+  for (vismap::IndexRing f : one.faces) {
+    for (auto& i : f) i += base;
+    here.faces.push_back(f);
+  }
   vismap::Scene far = here;
   for (Vec3& v : far.vertices) v = {v.x + 5e6, v.y + 3e6, v.z};
   auto work = [](const vismap::Scene& s) {
