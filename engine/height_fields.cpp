@@ -49,12 +49,12 @@ Plane plane_of(const std::array<double, 3>& n) {
 struct Tally {
   std::int64_t facets = 0, vertices = 0, pieces = 0, border = 0, uses = 0;
   std::array<double, 3> normal{};   // the sum of its triangles' normals
-  std::uint32_t border_vertex = 0;                                // a vertex of its boundary
+  std::uint32_t border_vertex = 0;  // a vertex of its boundary
 };
 
 // The boundary neighbours of a vertex (at most two are kept).
 struct Border {
-  std::uint8_t count = 0;   // (a copy of the vertex's border_count)
+  std::uint8_t count = 0;   // (border_count keeps a copy, small, read for every corner)
   std::array<std::uint32_t, 2> next{};
 };
 
@@ -207,7 +207,7 @@ std::vector<int> height_field_components(const Scene& scene, const WorldFacets& 
   // Each piece shared by at most two triangles, in opposite directions; the
   // boundary's vertices and their neighbours along it.
   std::vector<Border> border(nv);
-  std::vector<std::uint8_t> border_count(nv, 0);   // (read for every corner: kept apart, small)
+  std::vector<std::uint8_t> border_count(nv, 0);
   auto comp_of = [&](const WorldPiece& p) { return comp[static_cast<std::size_t>(p.sharers[0].facet)]; };
   for (const WorldPiece& p : pieces) {
     const auto& s = p.sharers;
