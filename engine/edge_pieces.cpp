@@ -453,7 +453,9 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
   // in whatever order the threads come, then sorted by their ranks (distinct).
   const std::size_t nfacets = wf.facets.size();
   std::vector<std::uint32_t> next(nfacets + 1, 0);
-  auto take = [&](int facet) { return std::atomic_ref<std::uint32_t>(next[static_cast<std::size_t>(facet)]).fetch_add(1, std::memory_order_relaxed); };
+  auto take = [&](int facet) {
+    return std::atomic_ref<std::uint32_t>(next[static_cast<std::size_t>(facet)]).fetch_add(1, std::memory_order_relaxed);
+  };
   parallel_for(static_cast<int>(nchunks), threads, [&](int c) {
     const auto [from, to] = chunk_of(static_cast<std::size_t>(c));
     for (std::size_t g = from; g < to; ++g)

@@ -11,6 +11,7 @@
 
 #include "engine/parallel.h"
 #include "engine/star_link.h"
+#include "engine/world_exact.h"
 
 namespace vismap::engine {
 namespace {
@@ -26,12 +27,6 @@ struct Plane {
   int u = 0, w = 1;
   Point at(const Vec3& p) const { return Point(coordinate(p, u), coordinate(p, w)); }
 };
-
-// Triangle abc's normal, in doubles (only which axis to look along depends on it).
-std::array<double, 3> normal(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z, vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
-  return {uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx};
-}
 
 // Looking along the largest component of a surface's summed normals (any axis
 // gives an exact answer; this one lets a surface that faces mostly that way
@@ -52,19 +47,13 @@ struct Tally {
   std::uint32_t border_vertex = 0;  // a vertex of its boundary
 };
 
-// The boundary neighbours of a vertex (at most two are kept).
-struct Border {
-  std::uint8_t count = 0;   // (border_count keeps a copy, small, read for every corner)
-  std::array<std::uint32_t, 2> next{};
-};
-
 // Whether the triangles (v, from(i), to(i)), i < n, each turning positively in
-// the plane, make one fan from v's boundary neighbour to the other that turns
-// less than once round v: their link edges one path through all n, and no
+// the plane, make one fan from one of v's boundary neighbours (`ends`) to the
+// other that turns less than once round v: their link edges one path through all n, and no
 // step of it sweeping over the direction it started from.
 template <class From, class To>
-bool boundary_fan(std::size_t n, From&& from, To&& to, const Point& v, const Border& b, const std::vector<Vec3>& world,
-                  const Plane& plane) {
+bool boundary_fan(std::size_t n, From&& from, To&& to, const Point& v, const std::array<std::uint32_t, 2>& ends,
+                  const std::vector<Vec3>& world, const Plane& plane) {
   if (n < 1 || n > kMaxStar) return false;
   std::size_t next[kMaxStar];
   bool has_previous[kMaxStar] = {};
@@ -89,7 +78,7 @@ bool boundary_fan(std::size_t n, From&& from, To&& to, const Point& v, const Bor
   for (; at != n && steps < n; at = next[at]) path[steps++] = at;
   if (at != n || steps != n) return false;
   const std::uint32_t first = from(path[0]), last = to(path[n - 1]);
-  if (!((first == b.next[0] && last == b.next[1]) || (first == b.next[1] && last == b.next[0]))) return false;
+  if (!((first == ends[0] && last == ends[1]) || (first == ends[1] && last == ends[0]))) return false;
   auto p = [&](std::size_t k) { return plane.at(world[k < n ? from(path[k]) : last]); };
   const Point p0 = p(0);
   for (std::size_t k = 1; k <= n; ++k) {
@@ -190,7 +179,7 @@ std::vector<int> height_field_components(const Scene& scene, const WorldFacets& 
     const auto& v = corners(f);
     if (v.size() != 3) ok[c] = 0;
     else {
-      const std::array<double, 3> nf = normal(world[v[0]], world[v[1]], world[v[2]]);
+      const auto nf = world::normal_of<double>(world[v[0]], world[v[1]], world[v[2]]);   // (only the axis depends on it)
       for (std::size_t k = 0; k < 3; ++k) t.normal[k] += nf[k];
     }
     for (const std::uint32_t id : corners(f)) {
@@ -206,8 +195,8 @@ std::vector<int> height_field_components(const Scene& scene, const WorldFacets& 
   }
   // Each piece shared by at most two triangles, in opposite directions; the
   // boundary's vertices and their neighbours along it.
-  std::vector<Border> border(nv);
-  std::vector<std::uint8_t> border_count(nv, 0);
+  std::vector<std::uint8_t> border_count(nv, 0);               // a vertex's boundary pieces (at most 2 kept)
+  std::vector<std::array<std::uint32_t, 2>> border_next(nv);   // and its neighbours along them
   auto comp_of = [&](const WorldPiece& p) { return comp[static_cast<std::size_t>(p.sharers[0].facet)]; };
   for (const WorldPiece& p : pieces) {
     const auto& s = p.sharers;
@@ -224,10 +213,8 @@ std::vector<int> height_field_components(const Scene& scene, const WorldFacets& 
     ++t.border;
     t.border_vertex = p.a;
     for (const auto& [v, w] : {std::pair(p.a, p.b), std::pair(p.b, p.a)}) {
-      Border& b = border[v];
-      if (b.count == 2) ok[c] = 0;
-      else b.next[b.count++] = w;
-      border_count[v] = b.count;
+      if (border_count[v] == 2) ok[c] = 0;
+      else border_next[v][border_count[v]++] = w;
     }
   }
   // A disk: every facet edge one piece, Euler characteristic 1, and its
@@ -239,17 +226,17 @@ std::vector<int> height_field_components(const Scene& scene, const WorldFacets& 
       ok[c] = 0;
       continue;
     }
-    std::uint32_t prev = t.border_vertex, at = border[prev].next[0];
+    std::uint32_t prev = t.border_vertex, at = border_next[prev][0];
     std::int64_t steps = 1;
     while (at != t.border_vertex && steps <= t.border) {
-      const Border& b = border[at];
-      if (b.count != 2) break;
-      const std::uint32_t next = b.next[0] == prev ? b.next[1] : b.next[0];
+      if (border_count[at] != 2) break;
+      const auto& b = border_next[at];
+      const std::uint32_t next = b[0] == prev ? b[1] : b[0];
       prev = at;
       at = next;
       ++steps;
     }
-    if (at != t.border_vertex || steps != t.border || border[t.border_vertex].count != 2) ok[c] = 0;
+    if (at != t.border_vertex || steps != t.border || border_count[t.border_vertex] != 2) ok[c] = 0;
   }
 
   // Geometry: the plane each is seen in.
@@ -306,7 +293,7 @@ std::vector<int> height_field_components(const Scene& scene, const WorldFacets& 
     const std::uint32_t c = comp[at_border[i].second];
     if (ok[c]) {
       std::uint32_t a[kMaxStar], b[kMaxStar];
-      bool fan = m <= kMaxStar && border[v].count == 2;
+      bool fan = m <= kMaxStar && border_count[v] == 2;
       for (std::size_t t = 0; fan && t < m; ++t) {
         const auto& cv = corners(at_border[i + t].second);
         const std::size_t k = cv[0] == v ? 0 : cv[1] == v ? 1 : 2;
@@ -315,7 +302,7 @@ std::vector<int> height_field_components(const Scene& scene, const WorldFacets& 
       }
       const Plane& pl = plane[c];
       if (!fan || !boundary_fan(m, [&](std::size_t t) { return a[t]; }, [&](std::size_t t) { return b[t]; },
-                                pl.at(world[v]), border[v], world, pl))
+                                pl.at(world[v]), border_next[v], world, pl))
         ok[c] = 0;
     }
     i = j;

@@ -289,6 +289,7 @@ struct InViewOrder {
   WorldFacets wf;
   std::vector<WorldPiece> pieces;
   ClosedComponents closed;
+  std::vector<int> height_field;
 };
 InViewOrder in_view_order(const WorldScene& world, const std::vector<std::uint32_t>& order, int threads) {
   const std::size_t n = order.size();
@@ -310,9 +311,11 @@ InViewOrder in_view_order(const WorldScene& world, const std::vector<std::uint32
   // facets share one matters.)
   v.closed.component.resize(n);
   v.closed.side.resize(n);
+  v.height_field.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     v.closed.component[k] = world.closed.component[order[k]];
     v.closed.side[k] = world.closed.side[order[k]];
+    v.height_field[k] = world.height_field[order[k]];
   }
   return v;
 }
@@ -683,10 +686,9 @@ void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& vie
 }
 
 // Open surfaces that are graphs over a coordinate plane meet themselves nowhere
-// (engine/height_fields.h): their facets are marked as a solid's are
+// (`label`: engine/height_fields.h): their facets are marked as a solid's are
 // (ScreenScene::solid), and the piercing searches pass over their pairs.
-void mark_height_fields(ScreenScene& ss, const CurveMaker& M, const ClosedComponents& cc, int threads, Stats& stats) {
-  const std::vector<int> label = height_field_components(*M.scene, M.wf, M.pieces, cc.component, threads);
+void mark_height_fields(ScreenScene& ss, const std::vector<int>& label, Stats& stats) {
   if (ss.solid.empty()) ss.solid.assign(ss.facets.size(), -1);
   std::int64_t marked = 0;
   for (std::size_t fi = 0; fi < label.size(); ++fi)
@@ -713,6 +715,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   // The world facets in screen order and their edge pieces: from the world
   // scene where one is kept for many views, else made for this view alone.
   ClosedComponents closed;
+  std::vector<int> height_field;   // (camera-free: engine/height_fields.h)
   if (world) {
     filter_counts.calls += world->counted.calls;   // (counted as if made for this view)
     filter_counts.exact += world->counted.exact;
@@ -720,11 +723,15 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     M.wf = std::move(v.wf);
     M.pieces = std::move(v.pieces);
     closed = std::move(v.closed);
+    height_field = std::move(v.height_field);
   } else {
     M.wf = make_world_facets(scene, threads);
     order_on_screen(M.wf, screen_order(M.wf, scene, view, threads), threads);
     M.pieces = match_edges(scene, M.wf, /*cell_bits=*/20, threads);
-    if (cull) closed = closed_components(scene, M.wf, M.pieces, threads);
+    if (cull) {
+      closed = closed_components(scene, M.wf, M.pieces, threads);
+      height_field = height_field_components(scene, M.wf, M.pieces, closed.component, threads);
+    }
   }
   WorldFacets& wf = M.wf;
   std::vector<WorldPiece>& pieces = M.pieces;
@@ -908,7 +915,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
 
   if (cull) {
     cull_by_closed_solids(ss, M, view, zsign, closed, threads, stats);
-    mark_height_fields(ss, M, closed, threads, stats);
+    mark_height_fields(ss, height_field, stats);
   }
 
   M.look.resize(ss.facets.size());

@@ -14,6 +14,7 @@ struct WorldScene {
   WorldFacets wf;               // in the input's order
   MatchedEdges edges;           // matched on wf
   ClosedComponents closed;      // on wf and edges
+  std::vector<int> height_field;   // per facet of wf: engine/height_fields.h
   // The filtered predicates making these took: each view counts them, as a
   // view made alone does (its stats are then the same).
   exact::FilterCounts counted;
