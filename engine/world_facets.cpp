@@ -136,6 +136,11 @@ void facets_of_faces(const Scene& scene, const std::vector<std::uint32_t>& canon
     std::size_t i1, i2;
     if (!find_plane(p, i1, i2)) { ++out.degenerate; continue; }
     const int face = static_cast<int>(f);
+    if (p.size() == 3) {   // (three corners not in a line: planar and convex, nothing to test)
+      out.facets.push_back(WorldFacet{face, true, false, SmallVec<std::uint32_t, 4>(ids.begin(), ids.end()),
+                                      SmallVec<EdgeRole, 8>(3, EdgeRole::Boundary)});
+      continue;
+    }
     bool planar = true;
     // (The three points that span the plane lie in it: no exact zero to compute.)
     for (std::size_t k = 1; k < p.size() && planar; ++k)

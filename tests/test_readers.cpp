@@ -6,11 +6,13 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -164,6 +166,51 @@ TEST(Off, ParsesNearestDouble) {
   EXPECT_EQ(s.vertices[4].z, 5.0);
   EXPECT_EQ(s.vertices[5].x, 0.1);
   EXPECT_EQ(s.vertices[5].y, 0.1);
+}
+
+// Numbers are parsed where they start (the common case) or from their whole
+// token (the rest): both must end a number where its token ends.
+TEST(Off, NumbersEndWhereTheirTokensDo) {
+  const Scene s = read(
+      "OFF\n3 1 0\n"
+      "0 0 0#glued comment\n"
+      "1e0\t+0 0\r\n"
+      "0 1 0\n"
+      "3 000 00000000000000000001 +2# 20 digits, a plus sign\n",
+      "off");
+  expect_vertex(s.vertices[1], 1, 0, 0);
+  EXPECT_EQ(s.faces, (Faces{{0, 1, 2}}));
+  EXPECT_TRUE(error_of("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2.\n", "t.off", "off").find("found '2.'") !=
+              std::string::npos);
+  EXPECT_TRUE(error_of("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0e\n3 0 1 2\n", "t.off", "off").find("found '0e'") !=
+              std::string::npos);
+}
+
+// Short decimals (the usual mesh file's) are read by a fast path of their own:
+// each must still be the nearest double, as std::from_chars gives it.
+TEST(Off, ShortDecimalsAreNearestDoubles) {
+  std::mt19937_64 rng(7);
+  const int n = 30000;
+  std::string text = "OFF\n" + std::to_string(n) + " 0 0\n";
+  std::vector<std::string> tokens;
+  for (int i = 0; i < 3 * n; ++i) {
+    const int digits = 1 + static_cast<int>(rng() % 17);   // (past 15: the general path)
+    std::string t = rng() % 2 ? "-" : "";
+    for (int k = 0; k < digits; ++k) t += static_cast<char>('0' + rng() % 10);
+    const int point = static_cast<int>(rng() % (digits + 2));   // (digits + 1: none)
+    if (point <= digits) t.insert(t.size() - static_cast<std::size_t>(digits - point), ".");
+    tokens.push_back(t);
+    text += t + (i % 3 == 2 ? "\n" : " ");
+  }
+  const Scene s = read(text, "off");
+  for (int i = 0; i < 3 * n; ++i) {
+    double want;
+    const std::string& t = tokens[static_cast<std::size_t>(i)];
+    ASSERT_EQ(std::from_chars(t.data(), t.data() + t.size(), want).ec, std::errc()) << t;
+    const Vec3& v = s.vertices[static_cast<std::size_t>(i / 3)];
+    const double got = i % 3 == 0 ? v.x : i % 3 == 1 ? v.y : v.z;
+    ASSERT_EQ(std::bit_cast<std::uint64_t>(got), std::bit_cast<std::uint64_t>(want)) << t;
+  }
 }
 
 // A large OFF file (over 2 MB of records: read in pieces when threads are

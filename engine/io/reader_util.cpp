@@ -1,6 +1,7 @@
 #include "engine/io/reader_util.h"
 
 #include <algorithm>
+#include <cfenv>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -130,18 +131,84 @@ bool parse_uint(std::string_view token, std::uint64_t& out) {
 
 // --- TextCursor ---------------------------------------------------------------------
 
-namespace {
-bool is_blank(char ch) { return ch == ' ' || ch == '\t' || ch == '\r' || ch == '\v' || ch == '\f'; }
-}  // namespace
 
 TextCursor::TextCursor(std::string_view text, const std::string& name, char comment)
-    : text_(text), name_(name), comment_(comment) {
+    : text_(text), name_(name), comment_(comment), nearest_(std::fegetround() == FE_TONEAREST) {
   // A UTF-8 byte-order mark is not content.
   if (text_.substr(0, 3) == "\xEF\xBB\xBF") pos_ = 3;
 }
 
 void TextCursor::skip_blanks() {
-  while (pos_ < text_.size() && is_blank(text_[pos_])) ++pos_;
+  const char* const b = text_.data();
+  std::size_t p = pos_;
+  const std::size_t n = text_.size();
+  while (p < n && is_blank(b[p])) ++p;
+  pos_ = p;
+}
+
+namespace {
+
+// A plain decimal ("-12.375": no exponent, no '+') whose digits, the point
+// dropped, make an integer below 2^53 with at most 22 of them after the point:
+// that integer and 10^k are doubles exactly, so one division rounded to nearest
+// is the nearest double to the decimal (Clinger's fast path). Returns where the
+// number ends, or nullptr where it is not such a decimal.
+const char* plain_decimal(const char* p, const char* e, double& out) {
+  const bool negative = p != e && *p == '-';
+  if (negative) ++p;
+  std::uint64_t m = 0;
+  int digits = 0, after = -1;   // (after: digits after the point, -1 before one)
+  for (; p != e; ++p) {
+    const unsigned d = static_cast<unsigned char>(*p) - unsigned{'0'};
+    if (d <= 9) {
+      if (++digits > 15) return nullptr;   // (15 digits stay below 2^53)
+      m = m * 10 + d;
+      if (after >= 0) ++after;
+    } else if (*p == '.' && after < 0) {
+      after = 0;
+    } else {
+      break;
+    }
+  }
+  if (digits == 0 || (p != e && (*p == 'e' || *p == 'E'))) return nullptr;
+  static constexpr double kTen[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11,
+                                    1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  const double v = after > 0 ? static_cast<double>(m) / kTen[after] : static_cast<double>(m);
+  out = negative ? -v : v;
+  return p;
+}
+
+}  // namespace
+
+bool TextCursor::finite_in_place(double& v) {
+  skip_blanks();
+  const char* const b = text_.data() + pos_;
+  const char* const e = text_.data() + text_.size();
+  const char* end = nearest_ ? plain_decimal(b, e, v) : nullptr;
+  if (end == nullptr) {
+    const auto r = std::from_chars(b, e, v);
+    if (r.ec != std::errc() || r.ptr == b) return false;
+    end = r.ptr;
+  }
+  const std::size_t at = pos_ + static_cast<std::size_t>(end - b);
+  if (!ends_token(at) || !std::isfinite(v)) return false;
+  pos_ = at;
+  return true;
+}
+
+bool TextCursor::count_in_place(std::uint64_t& out) {
+  skip_blanks();
+  // Up to 19 digits cannot overflow 64 bits; longer numbers take the general path.
+  const char* const b = text_.data() + pos_;
+  const char* const e = text_.data() + std::min(text_.size(), pos_ + 19);
+  const char* p = b;
+  std::uint64_t v = 0;
+  for (unsigned d; p != e && (d = static_cast<unsigned char>(*p) - unsigned{'0'}) <= 9; ++p) v = v * 10 + d;
+  const std::size_t at = pos_ + static_cast<std::size_t>(p - b);
+  if (p == b || !ends_token(at)) return false;
+  out = v;
+  pos_ = at;
+  return true;
 }
 
 std::string_view TextCursor::token() {

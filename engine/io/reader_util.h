@@ -2,6 +2,7 @@
 // a line-aware text cursor and little/big-endian loads. Internal to vismap_io.
 #pragma once
 #include <bit>
+#include <cfenv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -61,7 +62,7 @@ class TextCursor {
   // A piece of a larger text, from the start of its line `first_line` (no
   // byte-order mark looked for): messages name the larger text's lines.
   TextCursor(std::string_view piece, const std::string& name, char comment, std::uint64_t first_line)
-      : text_(piece), name_(name), comment_(comment), line_(first_line) {}
+      : text_(piece), name_(name), comment_(comment), line_(first_line), nearest_(std::fegetround() == FE_TONEAREST) {}
 
   const std::string& name() const { return name_; }
   std::uint64_t line() const { return line_; }
@@ -82,9 +83,10 @@ class TextCursor {
   // a callable returning one, called only on failure.
   template <class What>
   double coordinate(const What& what) {  // a finite double
-    const std::string_view tok = token();
     double v;
-    if (parse_double(tok, v) && std::isfinite(v)) [[likely]] return v;
+    if (finite_in_place(v)) [[likely]] return v;
+    const std::string_view tok = token();
+    if (parse_double(tok, v) && std::isfinite(v)) return v;
     bad_value(tok, describe(what), Kind::kCoordinate);
   }
   template <class What>
@@ -96,9 +98,10 @@ class TextCursor {
   }
   template <class What>
   std::uint64_t count(const What& what) {
-    const std::string_view tok = token();
     std::uint64_t v;
-    if (parse_uint(tok, v)) [[likely]] return v;
+    if (count_in_place(v)) [[likely]] return v;
+    const std::string_view tok = token();
+    if (parse_uint(tok, v)) return v;
     bad_value(tok, describe(what), Kind::kCount);
   }
   template <class What>
@@ -128,12 +131,23 @@ class TextCursor {
 
   bool is_comment(char ch) const { return comment_ != 0 && ch == comment_; }
   void skip_blanks();
+  // The common case of coordinate() and count() without finding the token
+  // first (a mesh is millions of them): the number is parsed where it starts,
+  // and taken only if it ends where the token does; otherwise the cursor has
+  // not moved and the general path (token, then parse) decides, as before.
+  bool ends_token(std::size_t at) const {
+    return at == text_.size() || is_blank(text_[at]) || text_[at] == '\n' || is_comment(text_[at]);
+  }
+  static bool is_blank(char ch) { return ch == ' ' || ch == '\t' || ch == '\r' || ch == '\v' || ch == '\f'; }
+  bool finite_in_place(double& v);   // (nan and inf too take the general path)
+  bool count_in_place(std::uint64_t& v);
 
   std::string_view text_;
   const std::string& name_;
   char comment_;
   std::size_t pos_ = 0;
   std::uint64_t line_ = 1;
+  bool nearest_;   // (the thread rounds to nearest: the plain decimals' fast path is exact)
 };
 
 // Builds a message from pieces without iostreams: cat("face ", 3, " has ...").
