@@ -2,6 +2,7 @@
 #include <climits>
 #include <numeric>
 #include <stdexcept>
+#include <tuple>
 
 #include "arrangements/map_graph.h"
 #include "engine/parallel.h"
@@ -123,9 +124,12 @@ std::vector<std::uint32_t> write_vertices(const MapGraph& g, const std::vector<c
 }
 
 void write_segments(const MapGraph& g, std::vector<Chain> chains, const std::vector<std::uint32_t>& index,
-                    VisibilityMap& map) {
-  std::sort(chains.begin(), chains.end(),
-            [](const Chain& a, const Chain& b) { return std::pair(a.from, a.to) < std::pair(b.from, b.to); });
+                    VisibilityMap& map, int threads) {
+  // (Two straight chains never join the same two vertices; the edge settles
+  // the order all the same, so that no thread count could change it.)
+  engine::parallel_sort(chains.begin(), chains.end(), [](const Chain& a, const Chain& b) {
+    return std::tuple(a.from, a.to, a.edge) < std::tuple(b.from, b.to, b.edge);
+  }, threads);
   map.segments.reserve(chains.size());
   for (std::size_t i = 0; i < chains.size(); ++i) {
     // The faces lists lie with the engine's curves, in another order: fetch ahead.
@@ -320,13 +324,13 @@ void write_canonical(const MapGraph& g, VisibilityMap& map, int threads) {
     }
   });
 
-  write_segments(g, std::move(chains), index, map);
+  write_segments(g, std::move(chains), index, map, threads);
 }
 
 void write_segments_only(const MapGraph& g, VisibilityMap& map, int threads) {
   std::vector<char> written(g.points.size(), 0);
   const std::vector<Chain> chains = drawn_chains(g, essential_vertices(g), written);
-  write_segments(g, chains, write_vertices(g, written, map, threads), map);
+  write_segments(g, chains, write_vertices(g, written, map, threads), map, threads);
   map.has_regions = false;
 }
 
