@@ -261,16 +261,11 @@ std::vector<std::uint32_t> screen_order(const WorldFacets& wf, const Scene& scen
   // The facets of one polygon (consecutive) share its first facet's key and so
   // keep their order: which of them speaks for the polygon where several hold
   // one edge (kinds, on fanned polygons) must not depend on the view.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> key(n);
+  std::vector<std::uint32_t> key(n);
   for (std::size_t i = 0; i < n; ++i)
-    key[i] = {i > 0 && wf.facets[i].face == wf.facets[i - 1].face
-                  ? key[i - 1].first
-                  : morton((centre[i][0] - x0) / w, (centre[i][1] - y0) / h),
-              static_cast<std::uint32_t>(i)};
-  parallel_sort(key.begin(), key.end(), std::less<>(), threads);   // ties by index: deterministic
-  std::vector<std::uint32_t> order(n);
-  for (std::size_t k = 0; k < n; ++k) order[k] = key[k].second;
-  return order;
+    key[i] = i > 0 && wf.facets[i].face == wf.facets[i - 1].face ? key[i - 1]
+                                                                 : morton((centre[i][0] - x0) / w, (centre[i][1] - y0) / h);
+  return order_by_key(key);   // (ties by index: deterministic)
 }
 
 // The facets of `wf` in `order` (moved out of it).

@@ -6,7 +6,10 @@
 // The corpus (tests/data/cases.txt: tube_hook.off, tube_through_itself.off)
 // checks the maps; these check each step's answer where it is known by hand.
 #include <gtest/gtest.h>
+#include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <random>
 
 #include <vector>
 
@@ -14,6 +17,7 @@
 #include "engine/culling.h"
 #include "engine/edge_pieces.h"
 #include "engine/height_fields.h"
+#include "engine/morton.h"
 #include "engine/self_contact.h"
 #include "engine/world_facets.h"
 
@@ -173,7 +177,7 @@ Scene grid(int n, double (*z)(double, double), bool mirror = false) {
       const double x = static_cast<double>(i) / n, y = static_cast<double>(j) / n;
       s.vertices.push_back({x, y, z(x, y)});
     }
-  auto id = [&](int i, int j) { return j * (n + 1) + i; };
+  auto id = [&](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
       IndexRing a{id(i, j), id(i + 1, j), id(i + 1, j + 1)}, b{id(i, j), id(i + 1, j + 1), id(i, j + 1)};
@@ -199,7 +203,7 @@ Scene band(double turns, int rings, double (*z)(double, double)) {
       s.vertices.push_back({radius * std::cos(t), radius * std::sin(t), z(t, radius)});
     }
   // (A whole turn closes: its last ray is its first.)
-  auto id = [&](int k, int r) { return (turns == 1.0 && k == steps ? 0 : k) * rings + r; };
+  auto id = [&](int k, int r) { return static_cast<std::uint32_t>((turns == 1.0 && k == steps ? 0 : k) * rings + r); };
   for (int k = 0; k < steps; ++k)
     for (int r = 0; r + 1 < rings; ++r) {
       s.faces.push_back({id(k, r), id(k, r + 1), id(k + 1, r + 1)});
@@ -259,3 +263,17 @@ TEST(HeightFields, ComponentsSharingAVertexAreNot) {
 }
 
 }  // namespace
+
+// The screen order's radix sort: positions by key, ties in position order, as a
+// stable comparison sort gives them (keys with many ties, in both 16-bit halves).
+TEST(ScreenOrder, RadixOrderIsTheStableSortsOrder) {
+  std::mt19937 rng(5);
+  for (std::size_t n : {0u, 1u, 7u, 100000u}) {
+    std::vector<std::uint32_t> key(n);
+    for (auto& k : key) k = (rng() % 50) << (rng() % 2 ? 16 : 3) | (rng() % 3);
+    std::vector<std::uint32_t> want(n);
+    std::iota(want.begin(), want.end(), 0u);
+    std::stable_sort(want.begin(), want.end(), [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
+    EXPECT_EQ(vismap::engine::order_by_key(key), want) << n;
+  }
+}
