@@ -11,8 +11,10 @@
 
 #include <array>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -45,6 +47,15 @@ inline CGAL::Mpzf projected_mpzf(const std::array<double, 4>& row, const Vec3& p
 // where it cannot tell (a sum that cancels to within Sum2's error of a double)
 // or a product or the scale could leave the range in which this holds: the
 // caller then takes projected_mpzf's.
+// The doubles next to x upwards and downwards (x finite), as std::nextafter
+// towards +-infinity gives them, without its call.
+inline double next_up(double x) {
+  if (x == 0) return std::numeric_limits<double>::denorm_min();
+  const auto bits = std::bit_cast<std::int64_t>(x);
+  return std::bit_cast<double>(x > 0 ? bits + 1 : bits - 1);
+}
+inline double next_down(double x) { return -next_up(-x); }
+
 inline bool projected_bounds(const std::array<double, 4>& row, const Vec3& p, int k, double& lo, double& hi) {
   const double v[3] = {p.x, p.y, p.z};
   if (!(std::abs(row[3]) < 0x1p900)) return false;
@@ -72,17 +83,22 @@ inline bool projected_bounds(const std::array<double, 4>& row, const Vec3& p, in
     const double tail = size * 0x1p-100;
     if (r > tail) {
       lo = result;
-      hi = std::nextafter(result, HUGE_VAL);
+      hi = next_up(result);
     } else if (r < -tail) {
-      lo = std::nextafter(result, -HUGE_VAL);
+      lo = next_down(result);
       hi = result;
     } else {
       return false;   // (the value is within Sum2's error of a double: rare, see above)
     }
   }
   if (k != 0) {
-    lo = std::ldexp(lo, k);
-    hi = std::ldexp(hi, k);
+    // (A power of two as a double where k is in its range: the products are
+    // then ldexp's, exact wherever the test below lets them through.)
+    const double scale = k >= -1022 && k <= 1023 ? std::bit_cast<double>(static_cast<std::uint64_t>(k + 1023) << 52) : 0;
+    const double lo0 = lo, hi0 = hi;
+    lo = scale != 0 ? lo * scale : std::ldexp(lo, k);
+    hi = scale != 0 ? hi * scale : std::ldexp(hi, k);
+    if ((lo == 0) != (lo0 == 0) || (hi == 0) != (hi0 == 0)) return false;   // (underflowed to 0)
     // (Exact unless it leaves the normal range.)
     for (double x : {lo, hi})
       if (x != 0 && !(std::abs(x) >= 0x1p-1000 && std::abs(x) < 0x1p1000)) return false;
