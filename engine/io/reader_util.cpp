@@ -131,7 +131,6 @@ bool parse_uint(std::string_view token, std::uint64_t& out) {
 
 // --- TextCursor ---------------------------------------------------------------------
 
-
 TextCursor::TextCursor(std::string_view text, const std::string& name, char comment)
     : text_(text), name_(name), comment_(comment), nearest_(std::fegetround() == FE_TONEAREST) {
   // A UTF-8 byte-order mark is not content.
