@@ -34,6 +34,15 @@ inline CGAL::Mpzf projected_mpzf(const std::array<double, 4>& row, const Vec3& p
   return s;
 }
 
+// The doubles next to x upwards and downwards (x finite), as std::nextafter
+// towards +-infinity gives them, without its call.
+inline double next_up(double x) {
+  if (x == 0) return std::numeric_limits<double>::denorm_min();
+  const auto bits = std::bit_cast<std::int64_t>(x);
+  return std::bit_cast<double>(x > 0 ? bits + 1 : bits - 1);
+}
+inline double next_down(double x) { return -next_up(-x); }
+
 // The interval around (row . (p, 1)) * 2^k that projected_mpzf's gives (the
 // exact value rounded down and up: one ulp, or a point where it is a double),
 // from doubles alone: each product split exactly in two (fma), the seven parts
@@ -47,15 +56,6 @@ inline CGAL::Mpzf projected_mpzf(const std::array<double, 4>& row, const Vec3& p
 // where it cannot tell (a sum that cancels to within Sum2's error of a double)
 // or a product or the scale could leave the range in which this holds: the
 // caller then takes projected_mpzf's.
-// The doubles next to x upwards and downwards (x finite), as std::nextafter
-// towards +-infinity gives them, without its call.
-inline double next_up(double x) {
-  if (x == 0) return std::numeric_limits<double>::denorm_min();
-  const auto bits = std::bit_cast<std::int64_t>(x);
-  return std::bit_cast<double>(x > 0 ? bits + 1 : bits - 1);
-}
-inline double next_down(double x) { return -next_up(-x); }
-
 inline bool projected_bounds(const std::array<double, 4>& row, const Vec3& p, int k, double& lo, double& hi) {
   const double v[3] = {p.x, p.y, p.z};
   if (!(std::abs(row[3]) < 0x1p900)) return false;

@@ -1,7 +1,6 @@
 // Position along a Morton (Z-order) curve: stages that walk facets and curves in
 // this order touch memory in screen order, which keeps large scenes in cache.
 #pragma once
-#include <array>
 #include <cstdint>
 #include <vector>
 

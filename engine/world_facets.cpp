@@ -136,9 +136,12 @@ void facets_of_faces(const Scene& scene, const std::vector<std::uint32_t>& canon
     std::size_t i1, i2;
     if (!find_plane(p, i1, i2)) { ++out.degenerate; continue; }
     const int face = static_cast<int>(f);
-    if (p.size() == 3) {   // (three corners not in a line: planar and convex, nothing to test)
+    auto keep_whole = [&] {   // (the polygon is one convex facet)
       out.facets.push_back(WorldFacet{face, true, false, SmallVec<std::uint32_t, 4>(ids.begin(), ids.end()),
-                                      SmallVec<EdgeRole, 8>(3, EdgeRole::Boundary)});
+                                      SmallVec<EdgeRole, 8>(ids.size(), EdgeRole::Boundary)});
+    };
+    if (p.size() == 3) {   // (three corners not in a line: planar and convex, nothing to test)
+      keep_whole();
       continue;
     }
     bool planar = true;
@@ -152,8 +155,7 @@ void facets_of_faces(const Scene& scene, const std::vector<std::uint32_t>& canon
       for (std::size_t k = 0; k < n; ++k) q[k] = drop_axis(p[k], axis);
       CGAL::Orientation turn;
       if (is_convex(q, turn)) {
-        out.facets.push_back(WorldFacet{face, true, false, SmallVec<std::uint32_t, 4>(ids.begin(), ids.end()),
-                                        SmallVec<EdgeRole, 8>(n, EdgeRole::Boundary)});
+        keep_whole();
         continue;
       }
       ++out.nonconvex;
