@@ -128,11 +128,6 @@ struct Spanning {
   Vec3 o, p, q;
 };
 
-Spanning spanning_corners(const Scene& scene, const WorldFacet& w) {
-  const auto ids = spanning_ids(scene, w);
-  return {scene.vertices[ids[0]], scene.vertices[ids[1]], scene.vertices[ids[2]]};
-}
-
 // The crease test n1.n2 < c |n1||n2|, exactly, without square roots: with
 // d = n1.n2 and l = |n1|^2 |n2|^2, for c >= 0: d < 0 or d^2 < c^2 l; for c < 0:
 // d < 0 and d^2 > c^2 l. Signs from intervals first, exactly where they cannot tell.
@@ -158,13 +153,23 @@ std::pair<N, N> crease_terms(const Spanning& f, const Spanning& g, double c) {
 // off by at most 8.1 u D^2 (u = 2^-53), d by 158 u D^4 < 2^-45 D^4 and
 // d^2 - c^2 l by 8568 u D^8 < 2^-39 D^8 (|c| <= 1): the bounds below are 32
 // times those. False where D is 0 or outside 2^-100..2^100 (products of degree
-// 8 must neither underflow nor overflow).
+// 8 must neither underflow nor overflow). The edge vectors are taken once, for
+// D and for the normals (normal_of's products): this is asked of every edge
+// between two faces that face the same way, most edges of a smooth mesh.
 bool crease_signs_on_doubles(const Spanning& f, const Spanning& g, double c, int& sd, int& se) {
+  const std::array<double, 12> e4{f.p.x - f.o.x, f.p.y - f.o.y, f.p.z - f.o.z, f.q.x - f.o.x, f.q.y - f.o.y, f.q.z - f.o.z,
+                                  g.p.x - g.o.x, g.p.y - g.o.y, g.p.z - g.o.z, g.q.x - g.o.x, g.q.y - g.o.y, g.q.z - g.o.z};
   double D = 0;
-  for (const auto& [p, o] : {std::pair(&f.p, &f.o), std::pair(&f.q, &f.o), std::pair(&g.p, &g.o), std::pair(&g.q, &g.o)})
-    D = std::max({D, std::abs(p->x - o->x), std::abs(p->y - o->y), std::abs(p->z - o->z)});
+  for (double x : e4) D = std::max(D, std::abs(x));
   if (!(D >= 0x1p-100 && D <= 0x1p100)) return false;
-  const auto [d, e] = crease_terms<double>(f, g, c);
+  auto normal = [&](std::size_t k) -> std::array<double, 3> {   // (k: 0 for f, 6 for g)
+    const double ax = e4[k], ay = e4[k + 1], az = e4[k + 2], bx = e4[k + 3], by = e4[k + 4], bz = e4[k + 5];
+    return {ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx};
+  };
+  const std::array<double, 3> n1 = normal(0), n2 = normal(6);
+  const double d = n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2];
+  const double l = (n1[0] * n1[0] + n1[1] * n1[1] + n1[2] * n1[2]) * (n2[0] * n2[0] + n2[1] * n2[1] + n2[2] * n2[2]);
+  const double e = d * d - c * c * l;
   const double D4 = (D * D) * (D * D), d_bound = 0x1p-40 * D4, e_bound = 0x1p-34 * (D4 * D4);
   if (std::abs(d) <= d_bound || std::abs(e) <= e_bound) return false;
   sd = d > 0 ? 1 : -1;
@@ -429,7 +434,80 @@ struct CurveMaker {
   }
   void make_clips(int threads);
   bool make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3>& dropped, std::deque<P3>& ends) const;
+  // What make() would do with a piece, without making its curve: a lines-only
+  // drawing leaves most pieces latent (only their boxes kept).
+  enum class Verdict { Hidden, Clipped, EndOn, Drawn, Latent };
+  Verdict judge(const WorldPiece& wp, CGAL::Bbox_2& box) const;
+
+ private:
+  // make()'s steps, shared with judge().
+  bool any_occluder(const WorldPiece& wp) const;
+  void faces_of(const WorldPiece& wp, SmallInts& faces, std::array<int, 2>& facet) const;
+  EdgeKind kind_of(const SmallInts& faces, const std::array<int, 2>& facet) const;
+  Spanning spanning(int facet) const;
+  bool drawn_of(const SmallInts& faces, EdgeKind kind) const { return !faces.empty() && (kind != EdgeKind::Smooth || smooth); }
 };
+
+// Whether some facet sharing the piece hides or labels: else every one is a
+// culled back face, and the piece is hidden (or coincident with a nearer
+// visible line on screen): it cannot change the map.
+bool CurveMaker::any_occluder(const WorldPiece& wp) const {
+  for (const Sharer& s : wp.sharers) {
+    const Look& f = look[static_cast<std::size_t>(s.facet)];
+    if (f.occluder || (f.projected && f.facing == Facing::EdgeOn)) return true;
+  }
+  return false;
+}
+
+// The faces whose boundary the piece is (a sharer's edge that is not a
+// diagonal inside its polygon), ascending, each once; where there are two, a
+// facet of each (its first sharer with that face), for kind_of.
+void CurveMaker::faces_of(const WorldPiece& wp, SmallInts& faces, std::array<int, 2>& facet) const {
+  faces.clear();
+  facet = {-1, -1};
+  if (wp.sharers.size() <= 2) {   // (most pieces: no sort)
+    for (const Sharer& s : wp.sharers) {
+      const WorldFacet& w = wf.facets[static_cast<std::size_t>(s.facet)];
+      if (w.role[s.edge] != EdgeRole::Boundary) continue;
+      if (faces.empty()) { faces.push_back(w.face); facet[0] = s.facet; }
+      else if (w.face != faces[0]) { faces.push_back(w.face); facet[1] = s.facet; }
+    }
+    if (faces.size() == 2 && faces[1] < faces[0]) {
+      std::swap(faces[0], faces[1]);
+      std::swap(facet[0], facet[1]);
+    }
+    return;
+  }
+  for (const Sharer& s : wp.sharers)
+    if (wf.facets[s.facet].role[s.edge] == EdgeRole::Boundary) faces.push_back(wf.facets[s.facet].face);
+  std::sort(faces.begin(), faces.end());
+  faces.truncate(static_cast<std::size_t>(std::unique(faces.begin(), faces.end()) - faces.begin()));
+  if (faces.size() != 2) return;
+  for (const Sharer& s : wp.sharers) {
+    if (wf.facets[s.facet].role[s.edge] != EdgeRole::Boundary) continue;
+    for (std::size_t k = 0; k < 2; ++k)
+      if (wf.facets[s.facet].face == faces[k] && facet[k] < 0) facet[k] = s.facet;
+  }
+}
+
+// A facet's spanning corners: those its depth plane was made from where it has
+// one (projection kept them), else found again.
+Spanning CurveMaker::spanning(int facet) const {
+  std::array<std::uint32_t, 3> ids = exact->spanning[static_cast<std::size_t>(facet)];
+  if (ids[0] == 0 && ids[1] == 0 && ids[2] == 0) ids = spanning_ids(*scene, wf.facets[static_cast<std::size_t>(facet)]);
+  return {scene->vertices[ids[0]], scene->vertices[ids[1]], scene->vertices[ids[2]]};
+}
+
+// The piece's kind, from the faces sharing it and a facet of each (faces_of).
+EdgeKind CurveMaker::kind_of(const SmallInts& faces, const std::array<int, 2>& facet) const {
+  if (faces.size() >= 3) return EdgeKind::Crease;
+  if (faces.size() != 2) return EdgeKind::Border;
+  const Facing ga = facing(facet[0]), gb = facing(facet[1]);
+  if ((ga == Facing::Front) != (gb == Facing::Front)) return EdgeKind::Silhouette;
+  if (ga == gb && ga != Facing::EdgeOn)
+    return is_crease(spanning(facet[0]), spanning(facet[1]), cos_crease) ? EdgeKind::Crease : EdgeKind::Smooth;
+  return EdgeKind::Smooth;
+}
 
 // The curve of edge piece wp, made in c (every field set: c may be reused);
 // false if it is dropped (counted in `dropped`: hidden, clipped, seen end-on).
@@ -439,9 +517,6 @@ bool CurveMaker::make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3
   std::int64_t &dropped_hidden = dropped[0], &dropped_clipped = dropped[1], &dropped_point = dropped[2];
   c.sharers.clear();
   c.sharer_edge.clear();
-  c.faces.clear();
-  c.kind = EdgeKind::Border;
-  bool any_occluder = false;
   auto front = [this](std::uint32_t id) { return in_front(id); };
   for (const Sharer& s : wp.sharers) {
     c.sharers.push_back(s.facet);
@@ -451,32 +526,12 @@ bool CurveMaker::make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3
     c.sharer_edge.push_back(!f.projected     ? -1
                             : !cut(s.facet) ? s.edge
                                             : screen_edge_of(wf.facets[s.facet].v, s.edge, front));
-    if (wf.facets[s.facet].role[s.edge] == EdgeRole::Boundary) c.faces.push_back(wf.facets[s.facet].face);
-    any_occluder |= f.occluder || (f.projected && f.facing == Facing::EdgeOn);
   }
-  // Every facet sharing it is a culled back face: hidden (or coincident with a
-  // nearer visible line on screen), so it cannot change the map.
-  if (!any_occluder) { ++dropped_hidden; return false; }
-  std::sort(c.faces.begin(), c.faces.end());
-  c.faces.truncate(static_cast<std::size_t>(std::unique(c.faces.begin(), c.faces.end()) - c.faces.begin()));
-  // Kind, from the faces sharing the piece.
-  if (c.faces.size() == 1) c.kind = EdgeKind::Border;
-  else if (c.faces.size() >= 3) c.kind = EdgeKind::Crease;
-  else if (c.faces.size() == 2) {
-    int fa = -1, fb = -1;   // one facet of each face
-    for (const Sharer& s : wp.sharers) {
-      if (wf.facets[s.facet].role[s.edge] != EdgeRole::Boundary) continue;
-      if (wf.facets[s.facet].face == c.faces[0] && fa < 0) fa = s.facet;
-      if (wf.facets[s.facet].face == c.faces[1] && fb < 0) fb = s.facet;
-    }
-    auto spanning_of = [&](int fi) { return spanning_corners(*scene, wf.facets[fi]); };
-    Facing ga = facing(fa), gb = facing(fb);
-    if ((ga == Facing::Front) != (gb == Facing::Front)) c.kind = EdgeKind::Silhouette;
-    else if (ga == gb && ga != Facing::EdgeOn)
-      c.kind = is_crease(spanning_of(fa), spanning_of(fb), cos_crease) ? EdgeKind::Crease : EdgeKind::Smooth;
-    else c.kind = EdgeKind::Smooth;
-  }
-  c.drawn = !c.faces.empty() && (c.kind != EdgeKind::Smooth || smooth);
+  if (!any_occluder(wp)) { ++dropped_hidden; return false; }
+  std::array<int, 2> facet;
+  faces_of(wp, c.faces, facet);
+  c.kind = kind_of(c.faces, facet);
+  c.drawn = drawn_of(c.faces, c.kind);
   // Its place in the (depth, face index) order: the lowest face it belongs to.
   c.order_face = wf.facets[static_cast<std::size_t>(c.sharers[0])].face;
   for (int s : c.sharers) c.order_face = std::min(c.order_face, wf.facets[static_cast<std::size_t>(s)].face);
@@ -492,6 +547,28 @@ bool CurveMaker::make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3
   if (equal_points(c.s->xy(), c.t->xy())) { ++dropped_point; return false; }   // seen end-on
   c.box = box_of(*c.s) + box_of(*c.t);
   return true;
+}
+
+// As make() decides, in the same order; for a piece neither dropped nor drawn,
+// its curve's box. (A cut end's point is one make_clips made: looked up, not kept.)
+CurveMaker::Verdict CurveMaker::judge(const WorldPiece& wp, CGAL::Bbox_2& box) const {
+  if (!any_occluder(wp)) return Verdict::Hidden;
+  SmallInts faces;
+  std::array<int, 2> facet;
+  faces_of(wp, faces, facet);
+  if (drawn_of(faces, kind_of(faces, facet))) return Verdict::Drawn;
+  const bool fa = in_front(wp.a), fb = in_front(wp.b);
+  if (!fa && !fb) return Verdict::Clipped;
+  if (fa && fb) {
+    const P3 &s = image(wp.a), &t = image(wp.b);
+    if (equal_points(s.xy(), t.xy())) return Verdict::EndOn;
+    box = box_of(s) + box_of(t);
+  } else {
+    const P3 s = fa ? image(wp.a) : clip_point(wp.b, wp.a), t = fb ? image(wp.b) : clip_point(wp.a, wp.b);
+    if (equal_points(s.xy(), t.xy())) return Verdict::EndOn;
+    box = box_of(s) + box_of(t);
+  }
+  return Verdict::Latent;
 }
 
 // Every facet edge the near plane cuts, its cut point (made in parallel).
@@ -939,9 +1016,14 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     if (!latent) out.reserve(static_cast<std::size_t>(r.end - r.begin));
     Curve c;
     for (int i = r.begin; i < r.end; ++i) {
-      if (!M.make(pieces[static_cast<std::size_t>(i)], c, count, ends)) continue;
-      if (latent && !c.drawn) boxes.emplace_back(i, c.box);
-      else out.push_back(std::move(c));
+      const WorldPiece& wp = pieces[static_cast<std::size_t>(i)];
+      if (latent) {   // (judged first: most pieces of a lines-only drawing are never made)
+        CGAL::Bbox_2 box;
+        const CurveMaker::Verdict v = M.judge(wp, box);
+        if (v == CurveMaker::Verdict::Latent) { boxes.emplace_back(i, box); continue; }
+        if (v != CurveMaker::Verdict::Drawn) { ++count[v == CurveMaker::Verdict::Hidden ? 0 : v == CurveMaker::Verdict::Clipped ? 1 : 2]; continue; }
+      }
+      if (M.make(wp, c, count, ends)) out.push_back(std::move(c));
     }
     left[static_cast<std::size_t>(k)] = std::move(boxes);
     dropped[static_cast<std::size_t>(k)] = count;
@@ -991,6 +1073,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
 }
 
 const WorldFacets* world_facets_of(const ScreenScene& ss) { return ss.maker ? &ss.maker->wf : nullptr; }
+const std::vector<WorldPiece>* latent_pieces_of(const ScreenScene& ss) { return ss.maker ? &ss.maker->pieces : nullptr; }
 
 void make_latent_curves(ScreenScene& ss, const std::vector<char>& wanted, int threads) {
   std::vector<int> pick;

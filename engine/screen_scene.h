@@ -224,6 +224,8 @@ bool in_world_plane(const std::vector<Vec3>& input, long v, const Facet& f);
 // The world facets the screen facets were made from (index for index), where
 // the scene keeps them (latent curves, or made without culling); else null.
 const WorldFacets* world_facets_of(const ScreenScene& ss);
+// The world's edge pieces that latent curves are made from (ScreenScene::latent_piece), or null.
+const std::vector<WorldPiece>* latent_pieces_of(const ScreenScene& ss);
 
 // Makes the latent curves whose flag in `wanted` is set, appended to ss.curves in
 // latent order (as make_screen_scene would have made them); no curve is latent
