@@ -93,8 +93,9 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   // (Facets and curves are already in screen order: make_screen_scene.)
   // 2-4. The variable grid: B = c * min(sqrt(N), 1/L) cells per side.
   Grid grid = make_grid(ss, opt.grid_c, threads, st);
-  // 5. Faces into cells, with each cell's blocking face; 5c drops faces hidden everywhere.
-  bucket_facets(grid, ss, threads, st);
+  // 5. Faces into cells, with each cell's blocking face; 5c drops faces hidden everywhere
+  // (for a lines-only drawing, where no faces pierce each other: only near the drawn curves).
+  bucket_facets(grid, ss, opt.regions, threads, st);
   // 6. Remove what each cell's final blocking face hides.
   prune_facets(grid, ss, threads, st);
   st.time("faces_to_cells", clock.lap());

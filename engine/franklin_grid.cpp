@@ -196,18 +196,24 @@ double facet_area(const Facet& f, const Axis& X, const Axis& Y) {
 }
 
 // The depth complexity: the occluders' projected area over the screen's, both
-// in the grid's own coordinates. Chunks of facets in parallel, their sums added
-// in chunk order: the same for every thread count.
+// in the grid's own coordinates. It only sizes the grid (as L, measured on a
+// sample of the curves): above 2^16 facets, from every s-th facet (they are in
+// screen order: the sample spreads over the screen), scaled up; on the 10^6-
+// triangle terrain, 4 % of a lines-only drawing's instructions went to the whole
+// sum. Chunks of the sample in parallel, their sums added in chunk order: the
+// same for every thread count.
 double depth_complexity(const ScreenScene& ss, const Axis& X, const Axis& Y, int threads) {
-  const int n = static_cast<int>(ss.facets.size()), size = 8192;
+  const std::size_t nf = ss.facets.size(), step = std::max<std::size_t>(1, nf >> 16);
+  const int n = static_cast<int>((nf + step - 1) / step), size = 8192;
   std::vector<double> part(static_cast<std::size_t>(chunk_count(n, size)), 0);
   parallel_chunks(n, size, threads, [&](int c, Chunk r) {
     double sum = 0;
-    for (int i = r.begin; i < r.end; ++i) sum += facet_area(ss.facets[i], X, Y);
+    for (int i = r.begin; i < r.end; ++i) sum += facet_area(ss.facets[static_cast<std::size_t>(i) * step], X, Y);
     part[static_cast<std::size_t>(c)] = sum;
   });
   double area = 0;
   for (double a : part) area += a;
+  if (step > 1) area *= static_cast<double>(nf) / n;
   return std::isfinite(area) ? area : 5;
 }
 
@@ -266,6 +272,8 @@ Axis::Axis(std::vector<double> bounds) : bounds_(std::move(bounds)) {
   lo_ = lo;
   bins_per_unit_ = hi > lo ? bins / (hi - lo) : 0;
   if (!std::isfinite(bins_per_unit_)) bins_per_unit_ = 0;
+  bins_ = bins;
+  last_ = cells() - 1;
   first_.resize(static_cast<std::size_t>(bins) + 1);
   int i = 0;
   for (int k = 0; k <= bins; ++k) {
@@ -273,26 +281,6 @@ Axis::Axis(std::vector<double> bounds) : bounds_(std::move(bounds)) {
     while (i + 1 < cells() && bounds_[static_cast<std::size_t>(i) + 1] <= start) ++i;
     first_[static_cast<std::size_t>(k)] = i;
   }
-}
-
-int Axis::index(double v) const {
-  const int last = cells() - 1;
-  const int bins = static_cast<int>(first_.size()) - 1;
-  const double t = (v - lo_) * bins_per_unit_;
-  const int k = t > 0 ? (t < bins ? static_cast<int>(t) : bins - 1) : 0;   // (NaN: 0)
-  // The cell is among first_[k] .. first_[k + 1] (unless rounding put v in a
-  // neighbouring bin: the steps below then correct it).
-  // (Halving without a branch on the comparison: in a crowded bin, a close-up's
-  // many small cells, the searches' outcomes are as good as random.)
-  int i = first_[static_cast<std::size_t>(k)];
-  for (int n = first_[static_cast<std::size_t>(k) + 1] - i + 1; n > 1;) {
-    const int half = n / 2;
-    i = bounds_[static_cast<std::size_t>(i + half)] <= v ? i + half : i;
-    n -= half;
-  }
-  while (i > 0 && v < bounds_[static_cast<std::size_t>(i)]) --i;
-  while (i < last && v >= bounds_[static_cast<std::size_t>(i) + 1]) ++i;
-  return i;
 }
 
 // Steps 2-4: B = c * min(sqrt(N), 1/L) cells per side over the projected scene.
@@ -458,10 +446,79 @@ bool bucket_facet(Grid& g, const ScreenScene& ss, int fi, int ix, int iy, std::i
 
 }  // namespace
 
+namespace {
+
+// The cells steps 5-11 may look at, for a lines-only drawing where no two faces
+// pierce each other (one solid or height field: no intersection line can start
+// a drawn line anywhere), or none (empty: every cell). A curve is listed in a
+// cell only if its box reaches a cell a drawn curve's box reaches (a drawn curve;
+// one made late beside it; one cut_curves finds needed, listed then in every cell
+// it reaches): the candidates. What is looked at is the cells of their boxes and
+// of their facets' boxes, each filled as the whole grid's would be (every facet
+// reaching it, in index order); their facets (`whole`: every cell of theirs looked
+// at) are the only ones whose step 5c is taken, and the only ones whose flag
+// cut_curves reads (a listed curve's sharers). `latent_near` marks the candidates
+// among the latent curves (Grid::latent_near).
+struct DrawingCells {
+  std::vector<char> cell;          // per cell: looked at
+  std::vector<char> whole;         // per facet
+  std::vector<char> latent_near;   // per latent curve
+  bool all() const { return cell.empty(); }
+};
+DrawingCells drawing_cells(const Grid& g, const ScreenScene& ss, bool regions, int threads) {
+  DrawingCells d;
+  const std::vector<WorldPiece>* pieces = latent_pieces_of(ss);
+  if (regions || !occluders_in_one_solid(ss) || (!ss.latent_box.empty() && !pieces)) return d;
+  const auto nx = static_cast<std::size_t>(g.X.cells());
+  auto each_cell = [&](const CellRange& r, auto&& f) {
+    for (int iy = r.y0; iy <= r.y1; ++iy)
+      for (int ix = r.x0; ix <= r.x1; ++ix) f(static_cast<std::size_t>(iy) * nx + static_cast<std::size_t>(ix));
+  };
+  std::vector<char> drawn(g.cells.size(), 0);
+  for (const Curve& c : ss.curves)
+    if (c.drawn) each_cell(range_of(g, c.box), [&](std::size_t k) { drawn[k] = 1; });
+  auto near = [&](const CellRange& r) {
+    bool any = false;
+    each_cell(r, [&](std::size_t k) { any |= drawn[k] != 0; });
+    return any;
+  };
+  // The candidates' sharers, and the candidates' cells.
+  d.whole.assign(ss.facets.size(), 0);
+  d.cell.assign(g.cells.size(), 0);
+  for (const Curve& c : ss.curves) {
+    const CellRange r = range_of(g, c.box);
+    if (!near(r)) continue;
+    each_cell(r, [&](std::size_t k) { d.cell[k] = 1; });
+    for (int f : c.sharers) d.whole[static_cast<std::size_t>(f)] = 1;
+  }
+  d.latent_near.assign(ss.latent_box.size(), 0);
+  const int n = static_cast<int>(ss.latent_box.size()), size = 16384;
+  std::vector<std::vector<int>> found(static_cast<std::size_t>(chunk_count(n, size)));
+  parallel_chunks(n, size, threads, [&](int k, Chunk r) {
+    std::vector<int> here;   // (filled here, stored once)
+    for (int i = r.begin; i < r.end; ++i)
+      if (near(range_of(g, ss.latent_box[static_cast<std::size_t>(i)]))) here.push_back(i);
+    found[static_cast<std::size_t>(k)] = std::move(here);
+  });
+  for (const std::vector<int>& here : found)
+    for (int i : here) {
+      d.latent_near[static_cast<std::size_t>(i)] = 1;
+      each_cell(range_of(g, ss.latent_box[static_cast<std::size_t>(i)]), [&](std::size_t k) { d.cell[k] = 1; });
+      for (const Sharer& s : (*pieces)[static_cast<std::size_t>(ss.latent_piece[static_cast<std::size_t>(i)])].sharers)
+        d.whole[static_cast<std::size_t>(s.facet)] = 1;
+    }
+  for (std::size_t f = 0; f < d.whole.size(); ++f)
+    if (d.whole[f]) each_cell(g.facet_range[f], [&](std::size_t k) { d.cell[k] = 1; });
+  return d;
+}
+
+}  // namespace
+
 // Step 5: each facet goes to the cells of its bounding box, unless the cell's
 // blocking facet hides it there; a facet covering a cell may become its blocker.
-// Rows of cells in parallel.
-void bucket_facets(Grid& g, ScreenScene& ss, int threads, Stats& stats) {
+// Rows of cells in parallel. (A lines-only drawing may need only some cells:
+// drawing_cells.)
+void bucket_facets(Grid& g, ScreenScene& ss, bool regions, int threads, Stats& stats) {
   const int nf = static_cast<int>(ss.facets.size());
   // Each facet's cells, once (the rows below and the pair search read them).
   g.facet_range.resize(ss.facets.size());
@@ -469,9 +526,15 @@ void bucket_facets(Grid& g, ScreenScene& ss, int threads, Stats& stats) {
     for (int fi = r.begin; fi < r.end; ++fi)
       g.facet_range[static_cast<std::size_t>(fi)] = range_of(g, ss.facets[fi].box);
   });
+  DrawingCells only = drawing_cells(g, ss, regions, threads);
+  g.latent_near = std::move(only.latent_near);
+  auto looked_at = [&](int ix, int iy) { return only.all() || only.cell[static_cast<std::size_t>(iy) * g.X.cells() + ix]; };
   const ItemsByRow rows = items_by_row(g, nf, threads, [&](int fi) {
     const CellRange& r = g.facet_range[static_cast<std::size_t>(fi)];
-    return ss.facets[fi].occluder ? std::array<int, 2>{r.y0, r.y1} : kNoRows;
+    bool any = only.all();
+    for (int iy = r.y0; iy <= r.y1 && !any; ++iy)
+      for (int ix = r.x0; ix <= r.x1 && !any; ++ix) any = looked_at(ix, iy);
+    return ss.facets[fi].occluder && any ? std::array<int, 2>{r.y0, r.y1} : kNoRows;
   });
   std::vector<std::vector<int>> kept_by_row(rows.size());
   std::vector<std::array<std::int64_t, 2>> counts(rows.size());   // skipped, blockers
@@ -483,7 +546,8 @@ void bucket_facets(Grid& g, ScreenScene& ss, int threads, Stats& stats) {
     for (int fi : rows[row]) {
       const CellRange& r = g.facet_range[static_cast<std::size_t>(fi)];
       bool kept = false;
-      for (int ix = r.x0; ix <= r.x1; ++ix) kept |= bucket_facet(g, ss, fi, ix, iy, skipped, blockers);
+      for (int ix = r.x0; ix <= r.x1; ++ix)
+        if (looked_at(ix, iy)) kept |= bucket_facet(g, ss, fi, ix, iy, skipped, blockers);
       if (kept) kept_here.push_back(fi);
     }
     kept_by_row[row] = std::move(kept_here);
@@ -494,7 +558,8 @@ void bucket_facets(Grid& g, ScreenScene& ss, int threads, Stats& stats) {
   std::int64_t hidden_facets = 0, skipped = 0, blockers = 0;
   for (int fi = 0; fi < nf; ++fi) {
     Facet& f = ss.facets[fi];
-    if (f.occluder && !kept[static_cast<std::size_t>(fi)]) { f.occluder = false; ++hidden_facets; }   // step 5c
+    const bool known = only.all() || only.whole[static_cast<std::size_t>(fi)];   // (every cell of it looked at)
+    if (f.occluder && known && !kept[static_cast<std::size_t>(fi)]) { f.occluder = false; ++hidden_facets; }   // step 5c
   }
   for (const auto& c : counts) {
     skipped += c[0];
@@ -503,6 +568,8 @@ void bucket_facets(Grid& g, ScreenScene& ss, int threads, Stats& stats) {
   stats.count("facet_cells_behind_blocker", skipped);
   stats.count("blocking_candidates", blockers);
   stats.count("culled_behind_blocking_face", hidden_facets);
+  if (!only.all())
+    stats.count("cells_for_drawn_lines", std::count(only.cell.begin(), only.cell.end(), 1));
 }
 
 // Step 6: drop what the final blocker hides (it may have changed after a facet
@@ -1104,6 +1171,7 @@ std::vector<char> latent_near_drawn(const Grid& g, const ScreenScene& ss, int th
   std::vector<char> wanted(ss.latent_box.size(), 0);
   parallel_chunks(static_cast<int>(wanted.size()), 4096, threads, [&](int, Chunk c) {
     for (int i = c.begin; i < c.end; ++i) {
+      if (!g.latent_near.empty() && !g.latent_near[static_cast<std::size_t>(i)]) continue;   // (nowhere near)
       const CellRange r = range_of(g, ss.latent_box[static_cast<std::size_t>(i)]);
       for (int iy = r.y0; iy <= r.y1 && !wanted[i]; ++iy)
         for (int ix = r.x0; ix <= r.x1 && !wanted[i]; ++ix) wanted[i] = !g.at(ix, iy).curves.empty();

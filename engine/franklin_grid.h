@@ -26,12 +26,32 @@ class Axis {
   double operator[](int i) const { return bounds_[static_cast<std::size_t>(i)]; }
   int cells() const { return static_cast<int>(bounds_.size()) - 1; }
   // The cell holding v: the last boundary <= v (clamped to the first and last cell).
-  int index(double v) const;
+  // (Inline: the grid's steps ask it tens of millions of times on 10^6 faces.)
+  int index(double v) const {
+    const double t = (v - lo_) * bins_per_unit_;
+    const int k = t > 0 ? (t < bins_ ? static_cast<int>(t) : bins_ - 1) : 0;   // (NaN: 0)
+    // The cell is among first_[k] .. first_[k + 1] (unless rounding put v in a
+    // neighbouring bin: the steps below then correct it).
+    // (Halving without a branch on the comparison: in a crowded bin, a close-up's
+    // many small cells, the searches' outcomes are as good as random.)
+    const int* first = first_.data() + k;
+    const double* b = bounds_.data();
+    int i = first[0];
+    for (int n = first[1] - i + 1; n > 1;) {
+      const int half = n / 2;
+      i = b[i + half] <= v ? i + half : i;
+      n -= half;
+    }
+    while (i > 0 && v < b[i]) --i;
+    while (i < last_ && v >= b[i + 1]) ++i;
+    return i;
+  }
 
  private:
   std::vector<double> bounds_;
   std::vector<int> first_;      // first_[k]: the cell holding the start of bin k
   double lo_ = 0, bins_per_unit_ = 0;
+  int bins_ = 0, last_ = -1;    // (first_.size() - 1, cells() - 1)
 };
 
 // The cells a box reaches: columns x0 .. x1, rows y0 .. y1.
@@ -44,6 +64,8 @@ struct Grid {
   Axis X, Y;                    // cell boundaries
   std::vector<Cell> cells;      // row-major: cells[iy * X.cells() + ix]
   std::vector<CellRange> facet_range;   // per facet, its box's cells (set by step 5, read by the pair search)
+  std::vector<char> latent_near;        // per latent curve: its box reaches a cell a drawn curve's box reaches
+                                        // (set by step 5 where it looks only there; empty: not known)
   Cell& at(int ix, int iy) { return cells[static_cast<std::size_t>(iy) * X.cells() + ix]; }
   const Cell& at(int ix, int iy) const { return cells[static_cast<std::size_t>(iy) * X.cells() + ix]; }
 };
@@ -103,7 +125,7 @@ CGAL::Sign depth_gap(const Curve& C, const Curve& D, const P2& p, bool along_x);
 bool depth_crossing(const Curve& C, const Curve& D, const P2& lo, const P2& hi, P2& x);
 
 Grid make_grid(const ScreenScene& ss, double c, int threads, Stats& stats);       // steps 2-4
-void bucket_facets(Grid& g, ScreenScene& ss, int threads, Stats& stats);                       // step 5
+void bucket_facets(Grid& g, ScreenScene& ss, bool regions, int threads, Stats& stats);         // step 5
 void prune_facets(Grid& g, const ScreenScene& ss, int threads, Stats& stats);                  // step 6
 void add_intersection_lines(const Grid& g, ScreenScene& ss, int threads, Stats& stats);   // faces piercing each other
 void bucket_curves(Grid& g, ScreenScene& ss, bool regions, int threads, Stats& stats);   // step 7

@@ -255,6 +255,52 @@ TEST(HiddenLines, CheckerRefusesEachMutation) {
   }
 }
 
+// ---- a lines-only drawing of one surface looks only near its drawn lines ------------
+
+// A terrain alone (a height field: no two of its faces pierce each other): the
+// lines-only drawing fills only the grid cells near its drawn lines (stat
+// cells_for_drawn_lines, fewer than the grid's), and its segments are still the
+// whole map's, on every thread count: in views where hills hide valleys, along a
+// grazing direction, and from close by in perspective (near faces cover many
+// cells and block them), at two grid sizes.
+TEST(LinesOnly, OneSurfaceIsLookedAtOnlyNearItsDrawnLines) {
+  vismap::Scene scene;
+  scene.file = "hills";
+  const int n = 40;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const double x = static_cast<double>(i) / n, y = static_cast<double>(j) / n;
+      scene.vertices.push_back({x, y, 0.15 * std::sin(9 * x) * std::cos(7 * y) + 0.04 * std::sin(23 * x * y)});
+    }
+  auto id = [&](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      scene.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      scene.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  const std::vector<vismap::Camera> cameras = {ortho({-1, -2, -3}), ortho({-1, -0.3, -0.18}),
+                                               persp({1.8, -1.2, 0.9}, {0.5, 0.5, 0}, 35),
+                                               persp({0.45, 0.2, 0.3}, {0.5, 0.6, 0}, 70)};
+  for (std::size_t k = 0; k < cameras.size(); ++k)
+    for (double c : {1.0, 4.0}) {
+      const vismap::View view = vismap::make_view(cameras[k], scene);
+      vismap::Options whole;
+      whole.grid_c = c;
+      whole.threads = 1;
+      vismap::Options lines = whole;
+      lines.regions = false;
+      const std::string what = "camera " + std::to_string(k) + ", c " + std::to_string(c);
+      const vismap::VisibilityMap m = vismap::visibility_franklin(scene, view, lines);
+      EXPECT_GT(m.stats.counted("cells_for_drawn_lines"), 0) << what;
+      EXPECT_LT(m.stats.counted("cells_for_drawn_lines"), m.stats.counted("grid_cells")) << what;
+      EXPECT_GT(m.segments.size(), 20u) << what;
+      const std::string drawn = segments_of(map_json(scene, view, lines));
+      EXPECT_EQ(drawn, segments_of(map_json(scene, view, whole))) << what << ": the lines alone differ from the whole map's";
+      lines.threads = 3;
+      EXPECT_EQ(segments_of(map_json(scene, view, lines)), drawn) << what << ": three threads differ from one";
+    }
+}
+
 // ---- the grid is scaffolding: any c gives the same map ------------------------------
 
 TEST(GridIndependence, SameMapForEveryGridConstant) {
