@@ -1074,6 +1074,11 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
 
 const WorldFacets* world_facets_of(const ScreenScene& ss) { return ss.maker ? &ss.maker->wf : nullptr; }
 const std::vector<WorldPiece>* latent_pieces_of(const ScreenScene& ss) { return ss.maker ? &ss.maker->pieces : nullptr; }
+std::array<const P3*, 2> latent_ends(const ScreenScene& ss, std::size_t i) {
+  const CurveMaker& M = *ss.maker;
+  const WorldPiece& wp = M.pieces[static_cast<std::size_t>(ss.latent_piece[i])];
+  return {M.in_front(wp.a) ? &M.image(wp.a) : nullptr, M.in_front(wp.b) ? &M.image(wp.b) : nullptr};
+}
 
 void make_latent_curves(ScreenScene& ss, const std::vector<char>& wanted, int threads) {
   std::vector<int> pick;

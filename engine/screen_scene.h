@@ -226,6 +226,9 @@ bool in_world_plane(const std::vector<Vec3>& input, long v, const Facet& f);
 const WorldFacets* world_facets_of(const ScreenScene& ss);
 // The world's edge pieces that latent curves are made from (ScreenScene::latent_piece), or null.
 const std::vector<WorldPiece>* latent_pieces_of(const ScreenScene& ss);
+// Latent curve i's end points as the images they are (ScreenScene::images; its box is
+// theirs), or null for an end cut at the near plane.
+std::array<const P3*, 2> latent_ends(const ScreenScene& ss, std::size_t i);
 
 // Makes the latent curves whose flag in `wanted` is set, appended to ss.curves in
 // latent order (as make_screen_scene would have made them); no curve is latent
