@@ -575,13 +575,17 @@ void bucket_facets(Grid& g, ScreenScene& ss, bool regions, int threads, Stats& s
   DrawingCells only = drawing_cells(g, ss, image_cells, regions, threads);
   g.latent_near = std::move(only.latent_near);
   auto looked_at = [&](int ix, int iy) { return only.all() || only.cell[static_cast<std::size_t>(iy) * g.X.cells() + ix]; };
+  std::vector<char> listed(ss.facets.size(), 0);
   const ItemsByRow rows = items_by_row(g, nf, threads, [&](int fi) {
     const CellRange& r = g.facet_range[static_cast<std::size_t>(fi)];
     bool any = only.all();
     for (int iy = r.y0; iy <= r.y1 && !any; ++iy)
       for (int ix = r.x0; ix <= r.x1 && !any; ++ix) any = looked_at(ix, iy);
-    return ss.facets[fi].occluder && any ? std::array<int, 2>{r.y0, r.y1} : kNoRows;
+    listed[static_cast<std::size_t>(fi)] = ss.facets[fi].occluder && any;
+    return listed[static_cast<std::size_t>(fi)] ? std::array<int, 2>{r.y0, r.y1} : kNoRows;
   });
+  // The depth planes of what is listed (and only of that, for a lines-only drawing).
+  if (ss.planes_later) make_depth_planes(ss, listed, threads);
   std::vector<std::vector<int>> kept_by_row(rows.size());
   std::vector<std::array<std::int64_t, 2>> counts(rows.size());   // skipped, blockers
   parallel_for(g.Y.cells(), threads, [&](int iy) {

@@ -771,6 +771,46 @@ void mark_height_fields(ScreenScene& ss, const std::vector<int>& label, Stats& s
   stats.count("height_field_facets", marked);
 }
 
+// Parallel to the screen: every vertex at one depth, known exactly from its
+// interval. Common in views along an axis.
+bool parallel_to_screen(const Facet& f) {
+  const Interval z0 = approx_of(f.v[0].z);
+  return z0.is_point() && std::all_of(f.v.begin(), f.v.end(), [&](const P3& p) {
+           const Interval z = approx_of(p.z);
+           return z.inf() == z0.inf() && z.sup() == z0.sup();
+         });
+}
+
+// Facet fi's depth plane (f is not edge-on; its spanning corners are in `exact`
+// unless it is parallel to the screen). Parallel to the screen: depth = c.
+// Else depth = a x + b y + c from three vertices that are not collinear on
+// screen: intervals from the vertices' (exact values from the world, on
+// demand), or, where no three vertices' intervals can tell, computed once in GMP.
+void make_depth_plane(Facet& f, const ExactSource& exact, std::uint32_t fi) {
+  if (parallel_to_screen(f)) {
+    f.plane = DepthPlane::of_doubles(0, 0, approx_of(f.v[0].z).inf());
+    return;
+  }
+  const std::size_t nv = f.v.size();
+  std::array<Interval, 3> abc;
+  for (std::size_t k = 1; k + 1 < nv; ++k)
+    if (depth_plane(f.v[0], f.v[k], f.v[k + 1], abc)) {
+      f.plane = DepthPlane::of_source(abc[0], abc[1], abc[2], exact, fi);
+      return;
+    }
+  const Num x0 = num(f.v[0].x), y0 = num(f.v[0].y), z0 = num(f.v[0].z);
+  for (std::size_t k = 1; k + 1 < nv; ++k) {
+    const P3 &p1 = f.v[k], &p2 = f.v[k + 1];
+    const Num x1 = num(p1.x) - x0, y1 = num(p1.y) - y0, z1 = num(p1.z) - z0;
+    const Num x2 = num(p2.x) - x0, y2 = num(p2.y) - y0, z2 = num(p2.z) - z0;
+    const Num nz = x1 * y2 - y1 * x2;
+    if (nz == 0) continue;
+    const Num a = (z1 * y2 - y1 * z2) / nz, b = (x1 * z2 - z1 * x2) / nz;
+    f.plane = DepthPlane::of_rationals(to_mpq(a), to_mpq(b), to_mpq(Num(z0 - a * x0 - b * y0)), exact, fi);
+    return;
+  }
+}
+
 }  // namespace
 
 ScreenScene make_screen_scene(const Scene& scene, const View& view, const Options& opt,
@@ -940,38 +980,11 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
       f.zhi = std::max(f.zhi, z.sup());
     }
     f.occluder = true;
-    // Parallel to the screen (every vertex at one depth, known exactly from its
-    // interval): depth = c. Common in views along an axis.
-    const Interval z0i = approx_of(f.v[0].z);
-    if (z0i.is_point() && std::all_of(f.v.begin(), f.v.end(), [&](const P3& p) {
-          const Interval zi = approx_of(p.z);
-          return zi.inf() == z0i.inf() && zi.sup() == z0i.sup();
-        })) {
-      f.plane = DepthPlane::of_doubles(0, 0, z0i.inf());
-      return;
-    }
-    // depth = a x + b y + c from three vertices that are not collinear on screen:
-    // intervals from the vertices' (exact values from the world, on demand), or,
-    // where no three vertices' intervals can tell, computed once in GMP.
-    exact->spanning[fi] = spanning_ids(scene, w);
-    std::array<Interval, 3> abc;
-    for (std::size_t k = 1; k + 1 < nv; ++k)
-      if (depth_plane(f.v[0], f.v[k], f.v[k + 1], abc)) {
-        f.plane = DepthPlane::of_source(abc[0], abc[1], abc[2], *exact, static_cast<std::uint32_t>(fi));
-        return;
-      }
-    const Num x0 = num(f.v[0].x), y0 = num(f.v[0].y), z0 = num(f.v[0].z);
-    for (std::size_t k = 1; k + 1 < nv; ++k) {
-      const P3 &p1 = f.v[k], &p2 = f.v[k + 1];
-      const Num x1 = num(p1.x) - x0, y1 = num(p1.y) - y0, z1 = num(p1.z) - z0;
-      const Num x2 = num(p2.x) - x0, y2 = num(p2.y) - y0, z2 = num(p2.z) - z0;
-      const Num nz = x1 * y2 - y1 * x2;
-      if (nz == 0) continue;
-      const Num a = (z1 * y2 - y1 * z2) / nz, b = (x1 * z2 - z1 * x2) / nz;
-      f.plane = DepthPlane::of_rationals(to_mpq(a), to_mpq(b), to_mpq(Num(z0 - a * x0 - b * y0)), *exact,
-                                         static_cast<std::uint32_t>(fi));
-      break;
-    }
+    // Its plane's spanning corners (the crease test reads them too), and its
+    // depth plane, unless a lines-only drawing makes it later for the facets
+    // its cells list (make_depth_planes).
+    if (!parallel_to_screen(f)) exact->spanning[fi] = spanning_ids(scene, w);
+    if (!latent) make_depth_plane(f, *exact, static_cast<std::uint32_t>(fi));
   };
   ss.facets = parallel_make<Facet>(nf, facets_per_chunk, threads, [&](int c, int fi, Facet& f) {
     auto& [outside, edge_on] = culled[static_cast<std::size_t>(c)];
@@ -1064,6 +1077,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   stats.count("edges_culled_back", dropped_hidden);
   stats.count("edges_culled_outside_view", dropped_clipped);
   stats.count("edges_seen_end_on", dropped_point);
+  ss.planes_later = latent;
   if (latent) {
     stats.count("curves_latent", static_cast<std::int64_t>(ss.latent_box.size()));
     if (!ss.latent_box.empty()) ss.maker = std::move(maker);   // (else freed now, as for a whole map)
@@ -1073,6 +1087,13 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
 }
 
 const WorldFacets* world_facets_of(const ScreenScene& ss) { return ss.maker ? &ss.maker->wf : nullptr; }
+void make_depth_planes(ScreenScene& ss, const std::vector<char>& which, int threads) {
+  parallel_chunks(static_cast<int>(ss.facets.size()), 4096, threads, [&](int, Chunk r) {
+    for (int fi = r.begin; fi < r.end; ++fi)
+      if (which[static_cast<std::size_t>(fi)]) make_depth_plane(ss.facets[fi], *ss.exact, static_cast<std::uint32_t>(fi));
+  });
+}
+
 const std::vector<WorldPiece>* latent_pieces_of(const ScreenScene& ss) { return ss.maker ? &ss.maker->pieces : nullptr; }
 std::array<const P3*, 2> latent_ends(const ScreenScene& ss, std::size_t i) {
   const CurveMaker& M = *ss.maker;

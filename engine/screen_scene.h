@@ -160,6 +160,8 @@ struct ScreenScene {
   // nothing they hold moves (one per chunk of curves made in parallel).
   std::deque<std::deque<P3>> ends;
   int scale_exp = 0;             // screen coordinates are the spec's times 2^scale_exp
+  bool planes_later = false;     // the facets' depth planes not made yet (a lines-only drawing:
+                                 // make_depth_planes makes those its cells list)
   const std::vector<Vec3>* world = nullptr;   // the input's vertices (canonical ids index them)
   // Latent curves (lines only, when asked): edge pieces that are not drawn, each
   // known by its box until make_latent_curves makes the ones a drawing needs.
@@ -224,6 +226,9 @@ bool in_world_plane(const std::vector<Vec3>& input, long v, const Facet& f);
 // The world facets the screen facets were made from (index for index), where
 // the scene keeps them (latent curves, or made without culling); else null.
 const WorldFacets* world_facets_of(const ScreenScene& ss);
+// The depth planes of the facets `which` marks, where make_screen_scene left them
+// for later (ScreenScene::planes_later). In parallel.
+void make_depth_planes(ScreenScene& ss, const std::vector<char>& which, int threads);
 // The world's edge pieces that latent curves are made from (ScreenScene::latent_piece), or null.
 const std::vector<WorldPiece>* latent_pieces_of(const ScreenScene& ss);
 // Latent curve i's end points as the images they are (ScreenScene::images; its box is
