@@ -490,8 +490,8 @@ void CurveMaker::faces_of(const WorldPiece& wp, SmallInts& faces, std::array<int
   }
 }
 
-// A facet's spanning corners: those its depth plane was made from where it has
-// one (projection kept them), else found again.
+// A facet's spanning corners: those projection found (ExactSource::spanning:
+// every projected facet not parallel to the screen), else found again.
 Spanning CurveMaker::spanning(int facet) const {
   std::array<std::uint32_t, 3> ids = exact->spanning[static_cast<std::size_t>(facet)];
   if (ids[0] == 0 && ids[1] == 0 && ids[2] == 0) ids = spanning_ids(*scene, wf.facets[static_cast<std::size_t>(facet)]);
@@ -1033,8 +1033,9 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
       if (latent) {   // (judged first: most pieces of a lines-only drawing are never made)
         CGAL::Bbox_2 box;
         const CurveMaker::Verdict v = M.judge(wp, box);
-        if (v == CurveMaker::Verdict::Latent) { boxes.emplace_back(i, box); continue; }
-        if (v != CurveMaker::Verdict::Drawn) { ++count[v == CurveMaker::Verdict::Hidden ? 0 : v == CurveMaker::Verdict::Clipped ? 1 : 2]; continue; }
+        using V = CurveMaker::Verdict;
+        if (v == V::Latent) { boxes.emplace_back(i, box); continue; }
+        if (v != V::Drawn) { ++count[v == V::Hidden ? 0 : v == V::Clipped ? 1 : 2]; continue; }   // (as make() counts)
       }
       if (M.make(wp, c, count, ends)) out.push_back(std::move(c));
     }
