@@ -781,13 +781,13 @@ bool parallel_to_screen(const Facet& f) {
          });
 }
 
-// Facet fi's depth plane (f is not edge-on; its spanning corners are in `exact`
-// unless it is parallel to the screen). Parallel to the screen: depth = c.
+// Facet fi's depth plane (f is not edge-on; `parallel`: parallel_to_screen(f);
+// its spanning corners are in `exact` unless it is). Parallel to the screen: depth = c.
 // Else depth = a x + b y + c from three vertices that are not collinear on
 // screen: intervals from the vertices' (exact values from the world, on
 // demand), or, where no three vertices' intervals can tell, computed once in GMP.
-void make_depth_plane(Facet& f, const ExactSource& exact, std::uint32_t fi) {
-  if (parallel_to_screen(f)) {
+void make_depth_plane(Facet& f, const ExactSource& exact, std::uint32_t fi, bool parallel) {
+  if (parallel) {
     f.plane = DepthPlane::of_doubles(0, 0, approx_of(f.v[0].z).inf());
     return;
   }
@@ -983,8 +983,9 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     // Its plane's spanning corners (the crease test reads them too), and its
     // depth plane, unless a lines-only drawing makes it later for the facets
     // its cells list (make_depth_planes).
-    if (!parallel_to_screen(f)) exact->spanning[fi] = spanning_ids(scene, w);
-    if (!latent) make_depth_plane(f, *exact, static_cast<std::uint32_t>(fi));
+    const bool parallel = parallel_to_screen(f);
+    if (!parallel) exact->spanning[fi] = spanning_ids(scene, w);
+    if (!latent) make_depth_plane(f, *exact, static_cast<std::uint32_t>(fi), parallel);
   };
   ss.facets = parallel_make<Facet>(nf, facets_per_chunk, threads, [&](int c, int fi, Facet& f) {
     auto& [outside, edge_on] = culled[static_cast<std::size_t>(c)];
@@ -1091,7 +1092,10 @@ const WorldFacets* world_facets_of(const ScreenScene& ss) { return ss.maker ? &s
 void make_depth_planes(ScreenScene& ss, const std::vector<char>& which, int threads) {
   parallel_chunks(static_cast<int>(ss.facets.size()), 4096, threads, [&](int, Chunk r) {
     for (int fi = r.begin; fi < r.end; ++fi)
-      if (which[static_cast<std::size_t>(fi)]) make_depth_plane(ss.facets[fi], *ss.exact, static_cast<std::uint32_t>(fi));
+      if (which[static_cast<std::size_t>(fi)]) {
+        Facet& f = ss.facets[fi];
+        make_depth_plane(f, *ss.exact, static_cast<std::uint32_t>(fi), parallel_to_screen(f));
+      }
   });
 }
 
