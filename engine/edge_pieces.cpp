@@ -1,5 +1,6 @@
 #include "engine/edge_pieces.h"
 
+#include <CGAL/FPU.h>
 #include <CGAL/Interval_nt.h>
 #include <CGAL/Mpzf.h>
 #include <gmpxx.h>
@@ -69,8 +70,9 @@ bool key_less(const LineKey& a, const LineKey& b) {
 
 // Lines are first told apart without GMP. Each key value falls in a cell: the
 // reals truncated (towards zero) to 1 + cell_bits significant bits. An edge whose key
-// values' intervals each lie inside one cell has its line's cells; one whose
-// intervals straddle a border takes the cells of its exact key. Edges on one
+// values, in doubles with their error bounds (or else in intervals), each lie
+// inside one cell has its line's cells; one whose intervals straddle a border
+// takes the cells of its exact key. Edges on one
 // line thus always share their cells, and an edge alone in its cells (or
 // sharing them only with edges between the same two vertices) is alone on its
 // line: exact keys are needed only where cells are shared by other edges.
@@ -100,8 +102,10 @@ std::uint64_t cells_of(const LineKey& key, const Cells& cells) {
   return h;
 }
 
-// The cells of the line through p and q, from intervals; false where an
-// interval is not inside one cell of moderate magnitude.
+// The cells of the line through p and q, from intervals (rounding upwards); false
+// where an interval is not inside one cell of moderate magnitude. Where the
+// doubles' bounds are in doubt: an operation that is exact gives a point
+// interval (a slope of exactly 1 is on a border: its bound straddles it).
 bool cells_from_intervals(const Vec3& p, const Vec3& q, int k, const Cells& cells, std::uint64_t& h) {
   using I = CGAL::Interval_nt<false>;
   const I pk(coord(p, k)), dk = I(coord(q, k)) - pk;
@@ -128,6 +132,48 @@ bool cells_from_intervals(const Vec3& p, const Vec3& q, int k, const Cells& cell
   return true;
 }
 
+// One key value's cell from its double v, rounded to nearest from the real
+// value x with |v - x| <= err - u (|v| + err) (u = 2^-53): [v - err, v + err]
+// rounded holds x, and a cell is an interval of the reals (the truncation is
+// monotone). False where that interval meets two cells or leaves the moderate
+// magnitudes (there, or where a bound could underflow, the exact key decides).
+bool cell_within(double v, double err, const Cells& cells, std::uint64_t& c) {
+  const double lo = std::abs(v - err), hi = std::abs(v + err);
+  if (!(std::max(lo, hi) < 0x1p900) || std::min(lo, hi) < 0x1p-900) return false;
+  c = cells.of(v - err);
+  return c == cells.of(v + err);
+}
+
+// The cells of the line through p and q (k: the first axis along which they
+// differ) from doubles rounded to nearest, each with an error bound; false
+// where one value's cell is in doubt. Bounds (u = 2^-53, no underflow above
+// 2^-900): the slope s = a / d is a quotient of two rounded differences,
+// |s^ - s| <= 3.02u |s^|; the offset o = p_j - p_k s has |o^ - o| <=
+// u (1.01 |o^| + 4.02 |p_k s^|) plus 2^-1075 where p_k s^ underflows. Each err
+// below also covers rounding v -/+ err. An exact zero difference is exact.
+bool cells_from_doubles(const Vec3& p, const Vec3& q, int k, const Cells& cells, std::uint64_t& h) {
+  constexpr double u = 0x1p-53;
+  const double pk = coord(p, k), dk = coord(q, k) - pk;
+  std::array<std::uint64_t, 4> c;   // the slopes' cells, then the offsets'
+  int slot = 0;
+  for (int j = 0; j < 3; ++j) {
+    if (j == k) continue;
+    const double pj = coord(p, j), a = coord(q, j) - pj;
+    if (a == 0) {   // (slope 0, offset p_j: both exact)
+      c[slot] = 0;
+      c[slot + 2] = cells.of(pj);
+    } else {
+      const double s = a / dk, t = pk * s, o = pj - t;
+      if (!cell_within(s, 5 * u * std::abs(s), cells, c[slot]) ||
+          !cell_within(o, 6 * u * (std::abs(o) + std::abs(t)) + 0x1p-1000, cells, c[slot + 2]))
+        return false;
+    }
+    ++slot;
+  }
+  h = mix(0, static_cast<std::uint64_t>(k));
+  for (std::uint64_t x : c) h = mix(h, x);
+  return true;
+}
 
 // Facet edges grouped by their (unordered) vertex pair: group g is
 // edges[start[g] .. start[g+1]), in facet order; groups in order of (lower
@@ -294,16 +340,29 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
 
   // Each group's line cells, in parallel.
   std::vector<std::uint64_t> cells_at(ngroups);
+  // Doubles first, then intervals for those in doubt, then exact keys.
+  auto ends = [&](std::size_t g) {
+    const Edge& e = group_edge(g);
+    return std::pair<const Vec3&, const Vec3&>(vertex(std::min(e.p, e.q)), vertex(std::max(e.p, e.q)));
+  };
   parallel_chunks(static_cast<int>(ngroups), 8192, threads, [&](int, Chunk r) {
-    CGAL::Protect_FPU_rounding<true> upward;
-    for (auto g = static_cast<std::size_t>(r.begin); g < static_cast<std::size_t>(r.end); ++g) {
-      const Edge& e = group_edge(g);
-      const std::uint32_t lo = std::min(e.p, e.q), hi = std::max(e.p, e.q);
-      if (!cells_from_intervals(vertex(lo), vertex(hi), e.axis, cells, cells_at[g])) {
-        CGAL::Protect_FPU_rounding<false> nearest;
-        cells_at[g] = cells_of(exact_key(e), cells);
+    std::vector<std::size_t> doubt;
+    {
+      CGAL::Protect_FPU_rounding<true> nearest(CGAL_FE_TONEAREST);   // (the doubles' bounds assume it)
+      for (auto g = static_cast<std::size_t>(r.begin); g < static_cast<std::size_t>(r.end); ++g) {
+        const auto [p, q] = ends(g);
+        if (!cells_from_doubles(p, q, group_edge(g).axis, cells, cells_at[g])) doubt.push_back(g);
       }
     }
+    std::size_t inexact = 0;
+    {
+      CGAL::Protect_FPU_rounding<true> upward;
+      for (std::size_t g : doubt) {
+        const auto [p, q] = ends(g);
+        if (!cells_from_intervals(p, q, group_edge(g).axis, cells, cells_at[g])) doubt[inexact++] = g;
+      }
+    }
+    for (std::size_t i = 0; i < inexact; ++i) cells_at[doubt[i]] = cells_of(exact_key(group_edge(doubt[i])), cells);
   });
   // Groups sorted by (cells, vertex pair): a run of several groups with equal
   // cells is a candidate line, handled once, by its first group.
@@ -487,6 +546,22 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
       sort_by_rank(out.pieces, out.rank, facet_start[f], facet_start[f + 1]);
   });
   return out;
+}
+
+std::uint64_t line_cells(const Vec3& p, const Vec3& q, int cell_bits, bool exact_only) {
+  const Cells cells(cell_bits);
+  const int k = p.x != q.x ? 0 : p.y != q.y ? 1 : 2;
+  std::uint64_t h;
+  if (exact_only) return cells_of(line_key(p, q, k), cells);
+  {
+    CGAL::Protect_FPU_rounding<true> nearest(CGAL_FE_TONEAREST);
+    if (cells_from_doubles(p, q, k, cells, h)) return h;
+  }
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    if (cells_from_intervals(p, q, k, cells, h)) return h;
+  }
+  return cells_of(line_key(p, q, k), cells);
 }
 
 std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, int cell_bits, int threads) {

@@ -42,6 +42,14 @@ std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, i
                                     int threads = 1);
 MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int cell_bits = 20, int threads = 1);
 
+// The hash of the cells that tell the line through p and q (p != q) apart at
+// cell_bits: from doubles with error bounds where they decide, else from
+// intervals, else from the line's exact key; with exact_only, from the exact
+// key alone. The same value
+// either way (a test checks): a piece's rank, hence the output, never depends
+// on which decided.
+std::uint64_t line_cells(const Vec3& p, const Vec3& q, int cell_bits, bool exact_only = false);
+
 // The pieces of `m` with facet f renumbered new_index[f], in the order
 // match_edges gives for the facets in their new order (the same pieces: only
 // the facets' numbers and order differ). For many views of one scene: the

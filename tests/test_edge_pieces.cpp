@@ -11,6 +11,7 @@
 #include <gmpxx.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <random>
@@ -177,6 +178,62 @@ TEST(EdgePieces, MatchesExactReferenceAtEveryCoarseness) {
   // edges, and edges split where collinear edges end inside them.
   EXPECT_GT(shared, 500);
   EXPECT_GT(split, 500);
+}
+
+// A line's cells are found from doubles with error bounds where those decide:
+// they must be the exact key's cells on every line, above all on lines whose
+// slopes and offsets lie within a few units in the last place of a cell's
+// border (made by multiplying a border value by an odd divisor and moving a
+// few ulps), at every coarseness, at magnitudes where the doubles must give
+// up, and on lines along or across the axes (exact zero differences).
+TEST(EdgePieces, LineCellsFromDoublesAreTheExactKeysCells) {
+  std::mt19937_64 rng(53);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::uniform_int_distribution<int> small(-6, 6);
+  auto step = [&](double x, int ulps) {
+    for (; ulps > 0; --ulps) x = std::nextafter(x, HUGE_VAL);
+    for (; ulps < 0; ++ulps) x = std::nextafter(x, -HUGE_VAL);
+    return x;
+  };
+  std::int64_t compared = 0, near_border = 0;
+  for (int iter = 0; iter < 200000; ++iter) {
+    const int bits = std::array{20, 20, 20, 0, 1, 8, 33, 51, 52}[iter % 9];
+    Vec3 p{unit(rng), unit(rng), unit(rng)}, q{unit(rng), unit(rng), unit(rng)};
+    switch (iter % 6) {
+      case 0: break;   // (general)
+      case 1: {        // slopes and an offset within a few ulps of a border
+        auto border = [&] { return std::ldexp(std::floor(unit(rng) * 0x1p21), -21); };
+        const double d = 3.0 * std::ldexp(1.0, small(rng) / 3), sy = border(), sz = border();
+        p.x = 1 + std::ldexp(double(small(rng)), -20);
+        p.y = step(border() + p.x * sy, small(rng));   // (the offset p_y - p_x s_y)
+        q.x = p.x + d;
+        q.y = step(p.y + sy * d, small(rng));          // (the slope (q_y - p_y) / d)
+        q.z = step(p.z + sz * d, small(rng));
+        ++near_border;
+        break;
+      }
+      case 2: q.y = p.y; break;                  // (a zero slope)
+      case 3: q.x = p.x; q.z = p.z; break;       // (along y only)
+      case 4: {                                  // (magnitudes the doubles leave to the exact key)
+        const int e = std::array{-1000, -950, -890, 880, 950, 1000}[rng() % 6];
+        p = {std::ldexp(p.x, e), std::ldexp(p.y, e), std::ldexp(p.z, e)};
+        q = {std::ldexp(q.x, e), std::ldexp(q.y, e), std::ldexp(q.z, e)};
+        break;
+      }
+      case 5: {                                  // (integer points: exact or short slopes)
+        p = {double(small(rng)), double(small(rng)), double(small(rng))};
+        q = {double(small(rng)), double(small(rng)), double(small(rng))};
+        if (p.x == q.x && p.y == q.y && p.z == q.z) q.z += 1;
+        break;
+      }
+    }
+    ASSERT_EQ(line_cells(p, q, bits), line_cells(p, q, bits, /*exact_only=*/true))
+        << "iter " << iter << ", bits " << bits << std::hexfloat << ": p " << p.x << ' ' << p.y << ' ' << p.z
+        << ", q " << q.x << ' ' << q.y << ' ' << q.z;
+    ++compared;
+  }
+  EXPECT_EQ(compared, 200000);
+  EXPECT_GT(near_border, 30000);
 }
 
 // Many views match the edges once and renumber the facets for each view's order
