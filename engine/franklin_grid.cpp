@@ -51,7 +51,7 @@ class ImageCells {
       for (int i = r.begin; i < r.end; ++i) {
         const P3& p = images_[static_cast<std::size_t>(i)];
         const auto x = CGAL::to_interval(p.x), y = CGAL::to_interval(p.y);   // (as a box of it takes them)
-        range_[static_cast<std::size_t>(i)] = {g.X.index(x.first), g.X.index(x.second), g.Y.index(y.first), g.Y.index(y.second)};
+        range_[static_cast<std::size_t>(i)] = range_of(g, CGAL::Bbox_2(x.first, y.first, x.second, y.second));
       }
     });
   }
@@ -531,21 +531,21 @@ DrawingCells drawing_cells(const Grid& g, const ScreenScene& ss, const ImageCell
   }
   d.latent_near.assign(ss.latent_box.size(), 0);
   const int n = static_cast<int>(ss.latent_box.size()), size = 16384;
-  std::vector<std::vector<int>> found(static_cast<std::size_t>(chunk_count(n, size)));
+  std::vector<std::vector<std::pair<int, CellRange>>> found(static_cast<std::size_t>(chunk_count(n, size)));
   parallel_chunks(n, size, threads, [&](int k, Chunk r) {
-    std::vector<int> here;   // (filled here, stored once)
+    std::vector<std::pair<int, CellRange>> here;   // (filled here, stored once)
     for (int i = r.begin; i < r.end; ++i) {
       CellRange range;   // (its box is its ends' boxes)
       if (!image_cells.hull(latent_ends(ss, static_cast<std::size_t>(i)), 2, range))
         range = range_of(g, ss.latent_box[static_cast<std::size_t>(i)]);
-      if (near(range)) here.push_back(i);
+      if (near(range)) here.emplace_back(i, range);
     }
     found[static_cast<std::size_t>(k)] = std::move(here);
   });
-  for (const std::vector<int>& here : found)
-    for (int i : here) {
+  for (const auto& here : found)
+    for (const auto& [i, range] : here) {
       d.latent_near[static_cast<std::size_t>(i)] = 1;
-      each_cell(range_of(g, ss.latent_box[static_cast<std::size_t>(i)]), [&](std::size_t k) { d.cell[k] = 1; });
+      each_cell(range, [&](std::size_t k) { d.cell[k] = 1; });
       for (const Sharer& s : (*pieces)[static_cast<std::size_t>(ss.latent_piece[static_cast<std::size_t>(i)])].sharers)
         d.whole[static_cast<std::size_t>(s.facet)] = 1;
     }
