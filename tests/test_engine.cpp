@@ -647,4 +647,28 @@ TEST(DoubleRange, PerspectiveMapIsTheSameAtEveryPowerOfTwoScale) {
   ASSERT_NE(reference.find("\"intersection\""), std::string::npos);
   for (int k : {-1000, -600, -300, 300, 600, 1000}) EXPECT_EQ(map_at(k), reference) << "scale 2^" << k;
 }
+
+// ---- the executables' threads ---------------------------------------------------------
+
+#if VISMAP_IDLE_THREADS_SLEEP
+// vismap's OpenMP threads sleep when idle (cli/openmp_wait.cpp): its libgomp,
+// asked to show its settings, spins 0 rounds (the shared libgomp's default is
+// 300 000); a policy the user sets is kept.
+TEST(Runtime, IdleOpenMPThreadsSleepInTheExecutable) {
+  auto settings = [](const std::string& env) {
+    const std::string cmd = "env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT " + env + " OMP_DISPLAY_ENV=verbose " +
+                            std::string(VISMAP_BIN) + " --help 2>&1 >/dev/null";
+    std::string out;
+    if (FILE* p = popen(cmd.c_str(), "r")) {
+      char buf[4096];
+      for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
+      EXPECT_EQ(pclose(p), 0) << cmd;
+    }
+    return out;
+  };
+  const std::string chosen = settings(""), users = settings("OMP_WAIT_POLICY=active");
+  EXPECT_NE(chosen.find("GOMP_SPINCOUNT = '0'"), std::string::npos) << chosen;
+  EXPECT_NE(users.find("OMP_WAIT_POLICY = 'ACTIVE'"), std::string::npos) << users;
+}
+#endif
 }  // namespace
