@@ -69,11 +69,10 @@ bool key_less(const LineKey& a, const LineKey& b) {
 }
 
 // Lines are first told apart without GMP. Each key value falls in a cell: the
-// reals truncated (towards zero) to 1 + cell_bits significant bits. An edge whose key
-// values, in doubles with their error bounds (or else in intervals), each lie
-// inside one cell has its line's cells; one whose intervals straddle a border
-// takes the cells of its exact key. Edges on one
-// line thus always share their cells, and an edge alone in its cells (or
+// reals truncated (towards zero) to 1 + cell_bits significant bits. An edge
+// whose key values, in doubles with their error bounds (or else in intervals),
+// each lie inside one cell has its line's cells; one whose intervals straddle a
+// border takes the cells of its exact key. Edges on one line thus always share their cells, and an edge alone in its cells (or
 // sharing them only with edges between the same two vertices) is alone on its
 // line: exact keys are needed only where cells are shared by other edges.
 struct Cells {

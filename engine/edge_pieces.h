@@ -45,9 +45,8 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
 // The hash of the cells that tell the line through p and q (p != q) apart at
 // cell_bits: from doubles with error bounds where they decide, else from
 // intervals, else from the line's exact key; with exact_only, from the exact
-// key alone. The same value
-// either way (a test checks): a piece's rank, hence the output, never depends
-// on which decided.
+// key alone. The same value either way (a test checks): a piece's rank, hence
+// the output, never depends on which decided.
 std::uint64_t line_cells(const Vec3& p, const Vec3& q, int cell_bits, bool exact_only = false);
 
 // The pieces of `m` with facet f renumbered new_index[f], in the order
