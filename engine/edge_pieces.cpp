@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <tuple>
 
 #include "engine/parallel.h"
 
@@ -172,6 +173,33 @@ bool cells_from_doubles(const Vec3& p, const Vec3& q, int k, const Cells& cells,
   h = mix(0, static_cast<std::uint64_t>(k));
   for (std::uint64_t x : c) h = mix(h, x);
   return true;
+}
+
+// The cells of n lines, line(i) -> (p, q, k), into out[0 .. n): doubles first,
+// then intervals for those in doubt, then exact keys (the rounding mode set
+// once per stage, not per line).
+template <class Line>
+void cells_of_lines(std::size_t n, Line&& line, const Cells& cells, std::uint64_t* out) {
+  std::vector<std::size_t> doubt;
+  {
+    CGAL::Protect_FPU_rounding<true> nearest(CGAL_FE_TONEAREST);   // (the doubles' bounds assume it)
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto [p, q, k] = line(i);
+      if (!cells_from_doubles(p, q, k, cells, out[i])) doubt.push_back(i);
+    }
+  }
+  std::size_t inexact = 0;
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    for (std::size_t i : doubt) {
+      const auto [p, q, k] = line(i);
+      if (!cells_from_intervals(p, q, k, cells, out[i])) doubt[inexact++] = i;
+    }
+  }
+  for (std::size_t j = 0; j < inexact; ++j) {
+    const auto [p, q, k] = line(doubt[j]);
+    out[doubt[j]] = cells_of(line_key(p, q, k), cells);
+  }
 }
 
 // Facet edges grouped by their (unordered) vertex pair: group g is
@@ -339,29 +367,12 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
 
   // Each group's line cells, in parallel.
   std::vector<std::uint64_t> cells_at(ngroups);
-  // Doubles first, then intervals for those in doubt, then exact keys.
-  auto ends = [&](std::size_t g) {
-    const Edge& e = group_edge(g);
-    return std::pair<const Vec3&, const Vec3&>(vertex(std::min(e.p, e.q)), vertex(std::max(e.p, e.q)));
-  };
   parallel_chunks(static_cast<int>(ngroups), 8192, threads, [&](int, Chunk r) {
-    std::vector<std::size_t> doubt;
-    {
-      CGAL::Protect_FPU_rounding<true> nearest(CGAL_FE_TONEAREST);   // (the doubles' bounds assume it)
-      for (auto g = static_cast<std::size_t>(r.begin); g < static_cast<std::size_t>(r.end); ++g) {
-        const auto [p, q] = ends(g);
-        if (!cells_from_doubles(p, q, group_edge(g).axis, cells, cells_at[g])) doubt.push_back(g);
-      }
-    }
-    std::size_t inexact = 0;
-    {
-      CGAL::Protect_FPU_rounding<true> upward;
-      for (std::size_t g : doubt) {
-        const auto [p, q] = ends(g);
-        if (!cells_from_intervals(p, q, group_edge(g).axis, cells, cells_at[g])) doubt[inexact++] = g;
-      }
-    }
-    for (std::size_t i = 0; i < inexact; ++i) cells_at[doubt[i]] = cells_of(exact_key(group_edge(doubt[i])), cells);
+    auto line = [&](std::size_t i) {   // (from the lower vertex id: the exact key's way)
+      const Edge& e = group_edge(static_cast<std::size_t>(r.begin) + i);
+      return std::tuple<const Vec3&, const Vec3&, int>(vertex(std::min(e.p, e.q)), vertex(std::max(e.p, e.q)), e.axis);
+    };
+    cells_of_lines(static_cast<std::size_t>(r.end - r.begin), line, cells, cells_at.data() + r.begin);
   });
   // Groups sorted by (cells, vertex pair): a run of several groups with equal
   // cells is a candidate line, handled once, by its first group.
@@ -550,17 +561,10 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
 std::uint64_t line_cells(const Vec3& p, const Vec3& q, int cell_bits, bool exact_only) {
   const Cells cells(cell_bits);
   const int k = p.x != q.x ? 0 : p.y != q.y ? 1 : 2;
-  std::uint64_t h;
   if (exact_only) return cells_of(line_key(p, q, k), cells);
-  {
-    CGAL::Protect_FPU_rounding<true> nearest(CGAL_FE_TONEAREST);
-    if (cells_from_doubles(p, q, k, cells, h)) return h;
-  }
-  {
-    CGAL::Protect_FPU_rounding<true> upward;
-    if (cells_from_intervals(p, q, k, cells, h)) return h;
-  }
-  return cells_of(line_key(p, q, k), cells);
+  std::uint64_t h;
+  cells_of_lines(1, [&](std::size_t) { return std::tuple<const Vec3&, const Vec3&, int>(p, q, k); }, cells, &h);
+  return h;
 }
 
 std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, int cell_bits, int threads) {

@@ -185,7 +185,8 @@ TEST(EdgePieces, MatchesExactReferenceAtEveryCoarseness) {
 // slopes and offsets lie within a few units in the last place of a cell's
 // border (made by multiplying a border value by an odd divisor and moving a
 // few ulps), at every coarseness, at magnitudes where the doubles must give
-// up, and on lines along or across the axes (exact zero differences).
+// up, and on lines along or across the axes (exact zero differences). (It fails
+// when either error bound is cut to 0.5u: checked.)
 TEST(EdgePieces, LineCellsFromDoublesAreTheExactKeysCells) {
   std::mt19937_64 rng(53);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -195,7 +196,6 @@ TEST(EdgePieces, LineCellsFromDoublesAreTheExactKeysCells) {
     for (; ulps < 0; ++ulps) x = std::nextafter(x, -HUGE_VAL);
     return x;
   };
-  std::int64_t compared = 0, near_border = 0;
   for (int iter = 0; iter < 200000; ++iter) {
     const int bits = std::array{20, 20, 20, 0, 1, 8, 33, 51, 52}[iter % 9];
     Vec3 p{unit(rng), unit(rng), unit(rng)}, q{unit(rng), unit(rng), unit(rng)};
@@ -209,7 +209,6 @@ TEST(EdgePieces, LineCellsFromDoublesAreTheExactKeysCells) {
         q.x = p.x + d;
         q.y = step(p.y + sy * d, small(rng));          // (the slope (q_y - p_y) / d)
         q.z = step(p.z + sz * d, small(rng));
-        ++near_border;
         break;
       }
       case 2: q.y = p.y; break;                  // (a zero slope)
@@ -230,10 +229,7 @@ TEST(EdgePieces, LineCellsFromDoublesAreTheExactKeysCells) {
     ASSERT_EQ(line_cells(p, q, bits), line_cells(p, q, bits, /*exact_only=*/true))
         << "iter " << iter << ", bits " << bits << std::hexfloat << ": p " << p.x << ' ' << p.y << ' ' << p.z
         << ", q " << q.x << ' ' << q.y << ' ' << q.z;
-    ++compared;
   }
-  EXPECT_EQ(compared, 200000);
-  EXPECT_GT(near_border, 30000);
 }
 
 // Many views match the edges once and renumber the facets for each view's order
