@@ -22,11 +22,13 @@ namespace vismap {
 namespace {
 
 // Temporaries in flight, where a signal handler can see them: fixed slots of
-// plain chars (no allocation in the handler, only unlink).
-constexpr int kSlots = 16;
+// plain chars (no allocation in the handler, only unlink). Threads writing
+// side by side (vismap --views) each claim a slot first, then fill it, then
+// show it to the handler (used).
+constexpr int kSlots = 64;
 constexpr std::size_t kPathMax = 4096;
 struct Slot {
-  std::atomic<bool> used{false};
+  std::atomic<bool> claimed{false}, used{false};
   char path[kPathMax];
 };
 Slot g_slots[kSlots];
@@ -64,7 +66,8 @@ int register_temp(const std::string& path) {
   if (path.size() >= kPathMax) return -1;
   for (int i = 0; i < kSlots; ++i) {
     Slot& s = g_slots[i];
-    if (!s.used.load(std::memory_order_relaxed)) {
+    bool free = false;
+    if (s.claimed.compare_exchange_strong(free, true, std::memory_order_acquire)) {
       std::memcpy(s.path, path.c_str(), path.size() + 1);
       s.used.store(true, std::memory_order_release);
       return i;
@@ -74,7 +77,9 @@ int register_temp(const std::string& path) {
 }
 
 void unregister_temp(int slot) {
-  if (slot >= 0) g_slots[slot].used.store(false, std::memory_order_release);
+  if (slot < 0) return;
+  g_slots[slot].used.store(false, std::memory_order_release);
+  g_slots[slot].claimed.store(false, std::memory_order_release);
 }
 
 mode_t creation_mode() {

@@ -1,5 +1,6 @@
 #include "cli/views.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -174,6 +175,12 @@ std::string view_file_name(const std::string& pattern, std::size_t k) {
   std::string n = std::to_string(k);
   if (static_cast<int>(n.size()) < width) n.insert(0, static_cast<std::size_t>(width) - n.size(), '0');
   return pattern.substr(0, at) + n + pattern.substr(at + len);
+}
+
+int views_side_by_side(std::size_t views, int threads, std::size_t faces, std::uint64_t max_memory) {
+  std::uint64_t most = std::min<std::uint64_t>({views, static_cast<std::uint64_t>(std::max(threads, 1)), 16});
+  if (max_memory != 0) most = std::min(most, max_memory / (kBytesPerFace * std::max<std::uint64_t>(faces, 1)));
+  return most < 2 ? 1 : static_cast<int>(most);
 }
 
 }  // namespace vismap::cli

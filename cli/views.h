@@ -2,7 +2,10 @@
 // and each view's output file names. The scene is read once; each view is
 // computed and written as a single run with its camera would be.
 #pragma once
+#include <cstddef>
+#include <cstdint>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "vismap/vismap.h"
@@ -34,5 +37,25 @@ std::string sheet_note(const std::string& spec);
 // `pattern` replaced by k; false when the pattern has no such field.
 bool has_view_field(const std::string& pattern);
 std::string view_file_name(const std::string& pattern, std::size_t k);
+
+// How many views run side by side, each on its share of `threads`: a view of a
+// small scene gains little from several threads (they wait for each other
+// between short loops), while views are independent. At most `threads`,
+// `views` and 16, and as many as `max_memory` holds at kBytesPerFace per face
+// each (more than twice the most a view was measured to take: 6 KB per face,
+// on random squares); 1 (one view at a time, on every thread) where not even
+// two fit.
+constexpr std::uint64_t kBytesPerFace = 16384;
+int views_side_by_side(std::size_t views, int threads, std::size_t faces, std::uint64_t max_memory);
+
+// body(k) for k in [0, count), each on a thread of its own (k = 0 on the
+// caller's), returning when all are done. body must not throw.
+template <class Body>
+void side_by_side(std::size_t count, Body&& body) {
+  std::vector<std::thread> others;
+  for (std::size_t k = 1; k < count; ++k) others.emplace_back([&body, k] { body(k); });
+  if (count > 0) body(0);
+  for (std::thread& t : others) t.join();
+}
 
 }  // namespace vismap::cli

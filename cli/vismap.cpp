@@ -1,8 +1,10 @@
 // vismap: exact visibility maps from mesh files.
 //   read scene -> camera -> engine -> JSON / SVG, each output written whole or not at all.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <new>
 #include <stdexcept>
 #include <string>
@@ -84,8 +86,9 @@ engine:
                        then Newell's overlay; with --views, one forest for
                        all views); all give the same map
   --threads N          threads for reading a large OFF file, Franklin's
-                       engine and the JSON (default: every usable core, one
-                       for scenes under 8192 faces); the map is the same for
+                       engine and the JSON, and for --views side by side
+                       (default: every usable core, one for a single view of
+                       a scene under 8192 faces); the map is the same for
                        every N
   --grid-c C           Franklin's grid constant c, B = c*min(sqrt(N),1/L) (default 4)
   --painter FILE       with --algorithm newell or bsp: SVG of the ordered, split
@@ -306,22 +309,39 @@ int main(int argc, char** argv) {
                   (json_path.empty() && svg_path.empty());
     // A sheet: the views' maps kept for the one page drawn after them.
     const std::string note = vismap::cli::sheet_note(views_spec), sheet_path = note.empty() ? "" : svg_path;
-    std::vector<vismap::VisibilityMap> sheet_maps;
+    std::vector<vismap::VisibilityMap> sheet_maps(sheet_path.empty() ? 0 : views.size());
+    // Views side by side where the scene is small enough (cli/views.h), each on
+    // its share of the threads; else one at a time on all of them.
+    const int budget = eng.threads > 0 ? eng.threads : vismap::engine::usable_cores();
+    const int side = vismap::cli::views_side_by_side(views.size(), budget, scene.faces.size(), limits.max_memory);
+    if (side > 1) {
+      eng.threads = std::max(1, budget / side);
+      std::fprintf(stderr, "vismap: %d views at a time, %d thread%s each\n", side, eng.threads, eng.threads > 1 ? "s" : "");
+    }
     vismap::ViewSeries series(scene, eng, views.size());   // (what no camera changes, made once for every view)
     const std::string json_pattern = json_path, svg_pattern = note.empty() ? svg_path : "", painter_pattern = painter_path;
-    for (std::size_t n = 0; n < views.size(); ++n) {
+    // View n: its map, its outputs written (all or none); returns its --stats lines.
+    auto draw_view = [&](std::size_t n) {
       const vismap::View& view = views[n];
+      std::string json_path = json_pattern, svg_path = svg_pattern, painter_path = painter_pattern;
       if (!views_spec.empty()) {
         json_path = json_pattern.empty() ? "" : vismap::cli::view_file_name(json_pattern, n);
         svg_path = svg_pattern.empty() ? "" : vismap::cli::view_file_name(svg_pattern, n);
         painter_path = painter_pattern.empty() ? "" : vismap::cli::view_file_name(painter_pattern, n);
-        std::fprintf(stderr, "vismap: view %zu of %zu (%s)\n", n + 1, views.size(), cameras[n].options.c_str());
       }
       std::vector<vismap::PaintedFragment> fragments;
       vismap::VisibilityMap map = series.map(view, painter_path.empty() ? nullptr : &fragments);
+      std::string stats_lines;
       if (stats) {
-        for (const auto& [k, v] : map.stats.counts) std::fprintf(stderr, "  %-36s %lld\n", k.c_str(), static_cast<long long>(v));
-        for (const auto& [k, v] : map.stats.seconds) std::fprintf(stderr, "  %-36s %.3f s\n", k.c_str(), v);
+        char line[128];
+        for (const auto& [k, v] : map.stats.counts) {
+          std::snprintf(line, sizeof line, "  %-36s %lld\n", k.c_str(), static_cast<long long>(v));
+          stats_lines += line;
+        }
+        for (const auto& [k, v] : map.stats.seconds) {
+          std::snprintf(line, sizeof line, "  %-36s %.3f s\n", k.c_str(), v);
+          stats_lines += line;
+        }
       } else {
         map.stats.seconds.clear();   // keep the JSON reproducible
       }
@@ -336,8 +356,10 @@ int main(int argc, char** argv) {
         drawing = vismap::make_drawing(map, svg.page, svg.provenance, svg.optimize_travel);
         if (svg.optimize_travel) {
           const char* unit = drawing.at.mm ? "mm" : "px";
-          std::fprintf(stderr, "vismap: pen-up travel %.1f %s -> %.1f %s (%zu paths)\n", drawing.travel_before, unit,
-                       drawing.travel_after, unit, drawing.chains.size());
+          char line[160];
+          std::snprintf(line, sizeof line, "vismap: pen-up travel %.1f %s -> %.1f %s (%zu paths)\n",
+                        drawing.travel_before, unit, drawing.travel_after, unit, drawing.chains.size());
+          stats_lines = line + stats_lines;
         }
         const std::string fmt = vismap::drawing_format(svg_path);
         outputs.push_back({svg_path, [&, fmt](const auto& write) {
@@ -353,7 +375,32 @@ int main(int argc, char** argv) {
       if (json_path.empty() && svg_path.empty() && painter_path.empty() && views_spec.empty())
         std::fprintf(stderr, "vismap: %s: %zu regions, %zu segments (no output asked for: use -o or --json)\n",
                      scene_path.c_str(), map.regions.size(), map.segments.size());
-      if (!sheet_path.empty()) sheet_maps.push_back(std::move(map));
+      if (!sheet_path.empty()) sheet_maps[n] = std::move(map);
+      return stats_lines;
+    };
+    // The first view alone (it makes what the views share), then the others
+    // `side` at a time; progress, statistics and errors in the views' order.
+    for (std::size_t first = 0; first < views.size();) {
+      const std::size_t count = first == 0 ? 1 : std::min<std::size_t>(static_cast<std::size_t>(side), views.size() - first);
+      if (!views_spec.empty())
+        for (std::size_t n = first; n < first + count; ++n)
+          std::fprintf(stderr, "vismap: view %zu of %zu (%s)\n", n + 1, views.size(), cameras[n].options.c_str());
+      std::vector<std::string> stats_lines(count);
+      std::vector<std::exception_ptr> errors(count);
+      vismap::cli::side_by_side(count, [&](std::size_t k) {
+        try {
+          stats_lines[k] = draw_view(first + k);
+        } catch (...) {
+          errors[k] = std::current_exception();
+        }
+      });
+      for (std::size_t k = 0; k < count; ++k) {
+        // (Side by side, the progress lines came first: each view's block is named.)
+        if (count > 1 && !stats_lines[k].empty()) std::fprintf(stderr, "vismap: statistics of view %zu:\n", first + k + 1);
+        std::fputs(stats_lines[k].c_str(), stderr);
+        if (errors[k]) std::rethrow_exception(errors[k]);
+      }
+      first += count;
     }
     if (!sheet_path.empty()) {
       std::vector<vismap::SheetView> sheet;

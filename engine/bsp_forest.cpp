@@ -402,6 +402,9 @@ std::vector<const BspTree*> trees_back_to_front(BspForest& forest, const Scene& 
       out.push_back(&forest.trees[static_cast<std::size_t>(m[0])]);
     } else {
       ++circuits;
+      // (A cycle's tree is made once, by the first view that meets it: other
+      // views wait. The map's nodes stay where they are as others are added.)
+      std::lock_guard<std::mutex> hold(*forest.circuits_lock);
       auto it = forest.circuits.find(m);
       if (it == forest.circuits.end()) {
         std::vector<std::uint32_t> facets;

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "arrangements/visibility_map.h"
@@ -39,6 +40,7 @@ struct BspForest {
   std::vector<std::array<double, 6>> box;           // each group's vertices: x0, y0, z0, x1, y1, z1
   std::map<std::pair<int, int>, Separation> meeting;   // groups whose boxes meet: their plane
   std::map<std::vector<int>, BspTree> circuits;     // trees of groups drawn together (a cycle)
+  std::shared_ptr<std::mutex> circuits_lock = std::make_shared<std::mutex>();   // (views side by side share them)
   std::int64_t objects = 0;                         // connected components (facets sharing vertices)
   exact::FilterCounts counted;                      // the filtered predicates making it ran (circuits' trees
                                                     // aside: each counts its own)

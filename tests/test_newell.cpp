@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "arrangements/json_writer.h"
@@ -400,6 +401,38 @@ TEST(Bsp, CyclesOfObjectsAreBroken) {
       }
     }
   EXPECT_GT(circuits, 0) << "no cycle was found by the priorities (all were groups)";
+}
+
+// Views side by side (vismap --views on several threads) share one forest: the
+// first view that meets a cycle makes its tree, the others wait and take it.
+// Four threads draw the rings of sticks from eight directions at once, each
+// map the one-view run's.
+TEST(Bsp, ViewsSideBySideShareOneForest) {
+  std::int64_t circuits = 0;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    const vismap::Scene scene = cyclic_sticks(seed, 3 + static_cast<int>(seed % 3));
+    vismap::engine::BspForest forest = vismap::engine::build_bsp_forest(scene);
+    std::vector<vismap::View> views;
+    for (int k = 0; k < 8; ++k)
+      views.push_back(vismap::make_view(ortho({0.02 * (k % 3), 0.015 * (k % 4), -1}), scene));
+    std::vector<std::string> shared(views.size());
+    std::vector<std::int64_t> found(views.size());
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 4; ++t)
+      threads.emplace_back([&, t] {
+        for (std::size_t k = static_cast<std::size_t>(t); k < views.size(); k += 4) {
+          const vismap::VisibilityMap m = vismap::visibility_bsp(scene, views[k], {}, nullptr, &forest);
+          found[k] = counted(m, "priority_circuits");
+          shared[k] = map_json(m);
+        }
+      });
+    for (std::thread& t : threads) t.join();
+    for (std::size_t k = 0; k < views.size(); ++k) {
+      EXPECT_EQ(shared[k], map_json(vismap::visibility_bsp(scene, views[k], {}))) << "seed " << seed << " view " << k;
+      circuits += found[k];
+    }
+  }
+  EXPECT_GT(circuits, 0) << "no view met a cycle: the shared trees of cycles were not exercised";
 }
 
 bool has_segment(const vismap::VisibilityMap& m, const std::string& x0, const std::string& y0,

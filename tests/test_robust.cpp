@@ -555,6 +555,47 @@ TEST(Views, EachViewIsASingleRunsMap) {
                                     {"--dir", "-1,0,0"}, {"--dir", "0,-1,0"}, {"--dir", "1,0,0"}, {"--dir", "0,1,0"}}));
 }
 
+// On several threads, views run side by side (one thread each here) and write
+// what one view at a time writes, byte for byte, for every engine and output;
+// progress in the views' order, each view's statistics named.
+TEST(Views, SideBySideWriteWhatOneAtATimeWrites) {
+  TempDir dir("views_side");
+  const std::string scene = (kData / "interpenetrating_boxes.off").string();
+  for (const std::string engine : {"franklin", "newell", "bsp"}) {
+    SCOPED_TRACE(engine);
+    std::vector<std::string> outputs = {"--hidden", "--json", dir.file("s%d.json"), "-o", dir.file("s%d.svg")};
+    if (engine != "franklin") outputs.insert(outputs.end(), {"--painter", dir.file("s%d.painter.svg")});
+    auto run = [&](const std::string& threads, const std::string& prefix) {
+      std::vector<std::string> argv = {kBin, scene, "--views", "orbit:7,25", "--algorithm", engine, "--threads", threads};
+      for (std::string o : outputs) {
+        if (o.find("s%d") != std::string::npos) o.replace(o.find("s%d"), 1, prefix);
+        argv.push_back(o);
+      }
+      return vismap_test::run(argv, dir.path());
+    };
+    const Result side = run("3", "a"), alone = run("1", "b");
+    ASSERT_EQ(side.status, 0) << both(side);
+    ASSERT_EQ(alone.status, 0) << both(alone);
+    EXPECT_NE(side.err.find("vismap: 3 views at a time, 1 thread each"), std::string::npos) << side.err;
+    EXPECT_EQ(alone.err.find("at a time"), std::string::npos) << alone.err;
+    EXPECT_EQ(cameras_run(side.err), cameras_run(alone.err));
+    ASSERT_EQ(cameras_run(side.err).size(), 7u) << side.err;
+    for (int k = 0; k < 7; ++k)
+      for (const std::string ext : {".json", ".svg", ".painter.svg"}) {
+        if (ext == ".painter.svg" && engine == "franklin") continue;
+        const std::string a = vismap_test::slurp(dir.file("a" + std::to_string(k) + ext));
+        EXPECT_FALSE(a.empty()) << k << ext;
+        EXPECT_EQ(a, vismap_test::slurp(dir.file("b" + std::to_string(k) + ext))) << k << ext;
+      }
+  }
+  const Result st = vismap_test::run({kBin, scene, "--views", "orbit:5", "--threads", "2", "--stats", "--json",
+                                      dir.file("t%d.json")},
+                                     dir.path());
+  ASSERT_EQ(st.status, 0) << both(st);
+  for (int k = 2; k <= 5; ++k)
+    EXPECT_NE(st.err.find("vismap: statistics of view " + std::to_string(k) + ":\n  "), std::string::npos) << st.err;
+}
+
 // The least and greatest page x and y of the path points in group `id` of a sheet.
 std::array<double, 4> group_box(const std::string& svg, const std::string& id) {
   const std::size_t begin = svg.find("<g id=\"" + id + "\">"), end = svg.find("<text", begin);
