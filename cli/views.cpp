@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "cli/camera_options.h"
+#include "engine/threads.h"
 
 namespace vismap::cli {
 namespace {
@@ -178,6 +179,7 @@ std::string view_file_name(const std::string& pattern, std::size_t k) {
 }
 
 int views_side_by_side(std::size_t views, int threads, std::size_t faces, std::uint64_t max_memory) {
+  if (faces >= engine::kFewFaces) return 1;
   std::uint64_t most = std::min<std::uint64_t>({views, static_cast<std::uint64_t>(std::max(threads, 1)), 16});
   if (max_memory != 0) most = std::min(most, max_memory / (kBytesPerFace * std::max<std::uint64_t>(faces, 1)));
   return most < 2 ? 1 : static_cast<int>(most);

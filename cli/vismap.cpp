@@ -86,10 +86,10 @@ engine:
                        then Newell's overlay; with --views, one forest for
                        all views); all give the same map
   --threads N          threads for reading a large OFF file, Franklin's
-                       engine and the JSON, and for --views side by side
-                       (default: every usable core, one for a single view of
-                       a scene under 8192 faces); the map is the same for
-                       every N
+                       engine and the JSON, and for --views of a scene under
+                       8192 faces side by side (default: every usable core,
+                       one for a single view of such a scene); the map is the
+                       same for every N
   --grid-c C           Franklin's grid constant c, B = c*min(sqrt(N),1/L) (default 4)
   --painter FILE       with --algorithm newell or bsp: SVG of the ordered, split
                        fragments filled back to front (the painter's drawing)
@@ -310,8 +310,8 @@ int main(int argc, char** argv) {
     // A sheet: the views' maps kept for the one page drawn after them.
     const std::string note = vismap::cli::sheet_note(views_spec), sheet_path = note.empty() ? "" : svg_path;
     std::vector<vismap::VisibilityMap> sheet_maps(sheet_path.empty() ? 0 : views.size());
-    // Views side by side where the scene is small enough (cli/views.h), each on
-    // its share of the threads; else one at a time on all of them.
+    // Views side by side where the scene is small (cli/views.h), each on its
+    // share of the threads; else one at a time on all of them.
     const int budget = eng.threads > 0 ? eng.threads : vismap::engine::usable_cores();
     const int side = vismap::cli::views_side_by_side(views.size(), budget, scene.faces.size(), limits.max_memory);
     if (side > 1) {

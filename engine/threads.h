@@ -14,9 +14,10 @@ int usable_cores();
 // but one for a scene of fewer than 8192 faces (starting the threads and
 // counting references atomically cost more there than the threads gain: the
 // elephant's 5 558 faces took 16% longer on two threads than on one).
+constexpr std::size_t kFewFaces = 8192;   // (below: one thread by default)
 inline int thread_count(int asked, std::size_t faces) {
   if (asked > 0) return asked;
-  return faces < 8192 ? 1 : usable_cores();
+  return faces < kFewFaces ? 1 : usable_cores();
 }
 
 }  // namespace vismap::engine

@@ -555,9 +555,10 @@ TEST(Views, EachViewIsASingleRunsMap) {
                                     {"--dir", "-1,0,0"}, {"--dir", "0,-1,0"}, {"--dir", "1,0,0"}, {"--dir", "0,1,0"}}));
 }
 
-// On several threads, views run side by side (one thread each here) and write
-// what one view at a time writes, byte for byte, for every engine and output;
-// progress in the views' order, each view's statistics named.
+// On several threads, the views of a small scene run side by side (one thread
+// each here) and write what one view at a time writes, byte for byte, for
+// every engine and output; progress in the views' order, each view's
+// statistics named. A scene of 8192 faces or more: one view at a time.
 TEST(Views, SideBySideWriteWhatOneAtATimeWrites) {
   TempDir dir("views_side");
   const std::string scene = (kData / "interpenetrating_boxes.off").string();
@@ -588,6 +589,22 @@ TEST(Views, SideBySideWriteWhatOneAtATimeWrites) {
         EXPECT_EQ(a, vismap_test::slurp(dir.file("b" + std::to_string(k) + ext))) << k << ext;
       }
   }
+  // A scene of 8192 faces (a flat grid of triangles) is drawn one view at a time, on every thread.
+  std::string grid = "OFF\n4225 8192 0\n";
+  for (int i = 0; i <= 64; ++i)
+    for (int j = 0; j <= 64; ++j) grid += std::to_string(i) + " " + std::to_string(j) + " 0\n";
+  for (int i = 0; i < 64; ++i)
+    for (int j = 0; j < 64; ++j) {
+      const int a = 65 * i + j, b = a + 65;
+      grid += "3 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(a + 1) + "\n3 " +
+              std::to_string(a + 1) + " " + std::to_string(b) + " " + std::to_string(b + 1) + "\n";
+    }
+  const Result big = vismap_test::run({kBin, dir.write("grid.off", grid), "--views", "orbit:3", "--threads", "2",
+                                       "--json", dir.file("g%d.json")},
+                                      dir.path());
+  ASSERT_EQ(big.status, 0) << both(big);
+  EXPECT_EQ(big.err.find("at a time"), std::string::npos) << big.err;
+  EXPECT_EQ(cameras_run(big.err).size(), 3u) << big.err;
   const Result st = vismap_test::run({kBin, scene, "--views", "orbit:5", "--threads", "2", "--stats", "--json",
                                       dir.file("t%d.json")},
                                      dir.path());
