@@ -5,11 +5,11 @@
 // Why: the engine fills tens of megabytes of fresh memory per view (bunny00:
 // ~72 MB; the 10^6-triangle terrain: ~860 MB), and on the shared machines here
 // the kernel takes ~8 us per 4 KiB page fault: 18 000 faults were 0.15 s of the
-// bunny's 0.52 s, and the serial ones kept a second thread from helping (one
-// fault at a time per process). In 2 MiB pages the same memory takes ~500
-// faults; fewer TLB misses too. Measured, one thread, bunny00 oblique to JSON:
-// 0.56 s -> 0.35 s wall; the terrain's full map 10.5 s -> 5.8 s, its peak
-// 831 -> 863 MB (pages are committed whole).
+// bunny's 0.52 s, and those on the serial steps kept a second thread waiting.
+// In 2 MiB pages the same memory takes ~500 faults; fewer TLB misses too.
+// Measured, one thread, bunny00 oblique to JSON: 0.56 s -> 0.35 s wall; the
+// terrain's full map 10.5 s -> 5.8 s, its peak 831 -> 863 MB (pages are
+// committed whole).
 //
 // When: before any library's initialiser, from .preinit_array. libstdc++'s
 // initialiser already allocates, and the segment that allocation opens (32 MiB,
