@@ -50,6 +50,7 @@ struct Result {
   std::string out, err;
   double cpu_seconds = 0;    // user + system
   std::uint64_t max_rss = 0; // bytes
+  long minor_faults = 0;     // page faults served without I/O (fresh memory, mostly)
 };
 
 // Starts `argv` and returns its pid; stdin from `in` ("" = /dev/null), stdout
@@ -103,6 +104,7 @@ inline Result finish(pid_t pid, const std::string& out_file, const std::string& 
   r.status = r.exited ? WEXITSTATUS(status) : WTERMSIG(status);
   r.cpu_seconds = ru.ru_utime.tv_sec + ru.ru_stime.tv_sec + 1e-6 * (ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
   r.max_rss = static_cast<std::uint64_t>(ru.ru_maxrss) * 1024;
+  r.minor_faults = ru.ru_minflt;
   r.out = slurp(out_file);
   r.err = slurp(err_file);
   return r;

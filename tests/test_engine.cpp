@@ -18,10 +18,6 @@
 #include <string>
 #include <vector>
 
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include "arrangements/json_writer.h"
 #include "bench/scene_gen.h"
 #include "engine/franklin_grid.h"
@@ -29,6 +25,7 @@
 #include "engine/parallel.h"
 #include "engine/world_exact.h"
 #include "engine/visibility.h"
+#include "tests/run_child.h"
 #include "tests/test_support.h"
 
 namespace {
@@ -687,47 +684,25 @@ TEST(Runtime, MemoryComesInLargePagesInTheExecutable) {
   if (mode.find("[always]") == std::string::npos && mode.find("[madvise]") == std::string::npos)
     GTEST_SKIP() << "the kernel lends no transparent huge pages: " << mode;
   // A terrain of 2 x 159^2 triangles (~60 MB at the peak), seen obliquely.
-  const fs::path dir = fs::temp_directory_path() / ("vismap_pages_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const fs::path off = dir / "terrain.off";
-  {
-    std::ofstream o(off);
-    const int n = 160;
-    o << "OFF\n" << n * n << ' ' << 2 * (n - 1) * (n - 1) << " 0\n";
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) o << i << ' ' << j << ' ' << std::sin(i * 0.2) * std::cos(j * 0.3) << '\n';
-    for (int i = 0; i + 1 < n; ++i)
-      for (int j = 0; j + 1 < n; ++j) {
-        const int a = i * n + j, b = a + 1, c = a + n, d = c + 1;
-        o << "3 " << a << ' ' << c << ' ' << b << "\n3 " << b << ' ' << c << ' ' << d << '\n';
-      }
-  }
-  struct Usage {
-    long faults, peak_kb;
+  const vismap_test::TempDir dir("pages");
+  const std::string off = dir.write("terrain.off", vismap::gen::to_off(vismap::gen::terrain(159, 5)));
+  auto run = [&](std::vector<std::string> env) {   // (env execs vismap: its usage is vismap's)
+    std::vector<std::string> argv = {"/usr/bin/env", "-u", "MIMALLOC_LARGE_OS_PAGES"};
+    argv.insert(argv.end(), env.begin(), env.end());
+    argv.insert(argv.end(), {VISMAP_BIN, off, "--dir", "-1,-2,-3", "--threads", "1", "--json", dir.file("map.json")});
+    const vismap_test::Result r = vismap_test::run(argv, dir.path());
+    EXPECT_EQ(r.status, 0) << r.err;
+    return r;
   };
-  auto run = [&](const std::string& env) {
-    const std::string cmd = "exec env -u MIMALLOC_LARGE_OS_PAGES " + env + " " + std::string(VISMAP_BIN) + " " +
-                            off.string() + " --dir -1,-2,-3 --threads 1 --json " + (dir / "map.json").string();
-    const pid_t pid = ::fork();
-    if (pid == 0) {
-      ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-      ::_exit(127);
-    }
-    int status = 0;
-    struct rusage ru {};
-    EXPECT_EQ(::wait4(pid, &status, 0, &ru), pid);
-    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << cmd;
-    return Usage{ru.ru_minflt, ru.ru_maxrss};
-  };
-  const Usage chosen = run(""), users = run("MIMALLOC_LARGE_OS_PAGES=0");
-  fs::remove_all(dir);
-  ASSERT_GT(chosen.peak_kb, 40 * 1024);
+  const vismap_test::Result chosen = run({}), users = run({"MIMALLOC_LARGE_OS_PAGES=0"});
+  const long chosen_kb = static_cast<long>(chosen.max_rss / 1024), users_kb = static_cast<long>(users.max_rss / 1024);
+  ASSERT_GT(chosen_kb, 40 * 1024);
   // In 2 MiB pages: under one fault for every 32 KiB resident at the peak (the
   // loader's own pages included); in 4 KiB pages, the user's choice where the
   // kernel lends large pages only to those who ask (madvise): a fault for each.
-  EXPECT_LT(chosen.faults, chosen.peak_kb / 32) << chosen.peak_kb << " KB";
+  EXPECT_LT(chosen.minor_faults, chosen_kb / 32) << chosen_kb << " KB";
   if (mode.find("[madvise]") != std::string::npos) {
-    EXPECT_GT(users.faults, users.peak_kb / 8) << users.peak_kb << " KB";
+    EXPECT_GT(users.minor_faults, users_kb / 8) << users_kb << " KB";
   }
 }
 #endif

@@ -26,6 +26,7 @@
 
 #include "arrangements/atomic_file.h"
 #include "engine/scene.h"
+#include "bench/scene_gen.h"
 #include "tests/run_child.h"
 
 namespace {
@@ -589,16 +590,8 @@ TEST(Views, SideBySideWriteWhatOneAtATimeWrites) {
         EXPECT_EQ(a, vismap_test::slurp(dir.file("b" + std::to_string(k) + ext))) << k << ext;
       }
   }
-  // A scene of 8192 faces (a flat grid of triangles) is drawn one view at a time, on every thread.
-  std::string grid = "OFF\n4225 8192 0\n";
-  for (int i = 0; i <= 64; ++i)
-    for (int j = 0; j <= 64; ++j) grid += std::to_string(i) + " " + std::to_string(j) + " 0\n";
-  for (int i = 0; i < 64; ++i)
-    for (int j = 0; j < 64; ++j) {
-      const int a = 65 * i + j, b = a + 65;
-      grid += "3 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(a + 1) + "\n3 " +
-              std::to_string(a + 1) + " " + std::to_string(b) + " " + std::to_string(b + 1) + "\n";
-    }
+  // A scene of 8192 faces (a 64 x 64 terrain) is drawn one view at a time, on every thread.
+  const std::string grid = vismap::gen::to_off(vismap::gen::terrain(64, 1));
   const Result big = vismap_test::run({kBin, dir.write("grid.off", grid), "--views", "orbit:3", "--threads", "2",
                                        "--json", dir.file("g%d.json")},
                                       dir.path());
