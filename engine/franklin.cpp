@@ -138,17 +138,18 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   build_map_from_floats(mp, map);
 #else
   // The map needs the curves alone from here: the facets (and their depth
-  // planes) are freed first. Each curve's faces list is kept for the map: the
-  // curves go once its graph has its edges.
+  // planes) are freed first. Each curve's faces list is kept for the map; the
+  // curves go once the map pieces are made (these point at the curves' end
+  // points and faces lists, not at the curves), before the graph is built.
   release(ss.facets, threads);
   const std::vector<FacesList> faces = faces_lists(ss.curves, threads);
   std::vector<MapPiece> mp = map_pieces(pieces, ss.curves, faces, threads);
+  release(ss.curves, threads);
   MapGraph graph = graph_of_pieces(mp, threads);
-  // The graph holds what the map needs of the pieces and curves (their faces
-  // lists aside): they are freed before the faces are traced and the map is
-  // written, the peak (10^6 faces: hundreds of MB less).
+  // The graph holds what the map needs of the pieces (their faces lists aside):
+  // they are freed before the faces are traced and the map is written, the
+  // peak (10^6 faces: hundreds of MB less).
   release(mp, threads);
-  std::vector<Curve>().swap(ss.curves);
   if (opt.regions) finish_map(graph, map, threads);
   else write_segments_only(graph, map, threads);
   // What is left of the points (the map has their exact values), on the threads.
