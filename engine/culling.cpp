@@ -33,6 +33,16 @@ ClosedComponents closed_components(const Scene& scene, const WorldFacets& wf, co
   // two back-facing pieces may then be visible. Such components are not culled.
   for (int f = 0; f < n; ++f)
     if (!wf.facets[f].planar) closed[comp[f]] = 0;
+  ClosedComponents cc;
+  cc.side.assign(n, 0);
+  // (An open surface, a terrain: no orientation to find, and no per-component
+  // sums to make room for, 74 bytes per facet.)
+  bool any_closed = false;
+  for (int f = 0; f < n && !any_closed; ++f) any_closed = comp[f] == f && closed[f];
+  if (!any_closed) {
+    cc.component = std::move(comp);
+    return cc;
+  }
 
   // Each closed component's origin: the first corner of its first facet.
   std::vector<Vec3> origin(n);
@@ -100,9 +110,7 @@ ClosedComponents closed_components(const Scene& scene, const WorldFacets& wf, co
     for (int c = 0; c < n; ++c)
       if (closed[c] && comp[c] == c && sign[c] == 0) sign[c] = static_cast<std::int8_t>(exact[c].sign());
   }
-  ClosedComponents cc;
   cc.component = std::move(comp);
-  cc.side.assign(n, 0);
   for (int f = 0; f < n; ++f) {
     const int c = cc.component[f];
     if (closed[c]) cc.side[f] = sign[c];

@@ -701,6 +701,15 @@ void keep_where_meeting_itself(std::vector<char>& hidden, const ClosedComponents
 void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& view, const std::vector<std::int8_t>& zsign,
                      const ClosedComponents& cc, int threads, Stats& stats) {
   const std::size_t n = ss.facets.size();
+  ss.solid.assign(n, -1);
+  // (No closed component, an open surface: nothing to cull, nor any per-facet
+  // box or cap list to make; on a 10^6-triangle terrain those were ~60 MB.)
+  if (std::all_of(cc.side.begin(), cc.side.end(), [](std::int8_t s) { return s == 0; })) {
+    stats.count("culled_back_faces", 0);
+    stats.count("culled_front_faces_in_caps", 0);
+    stats.count("near_plane_caps", 0);
+    return;
+  }
   std::vector<NearCap> caps;
   if (view.perspective) {
     NearPlane np;
@@ -716,7 +725,6 @@ void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& vie
   }
   std::vector<CGAL::Bbox_2> facet_box(n);
   for (std::size_t fi = 0; fi < n; ++fi) facet_box[fi] = ss.facets[fi].box;
-  ss.solid.assign(n, -1);
   const std::vector<char> hidden_back = hidden_when_back_facing(cc, caps, facet_box);
   // Seen from the solid's outside (the front of an outward-oriented component's
   // face, the back of an inward-oriented one's): hidden where every ray towards
