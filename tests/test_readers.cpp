@@ -133,6 +133,28 @@ TEST(Off, ReadsVerticesAndFacesInOrder) {
   EXPECT_EQ(s.faces, (Faces{{0, 1, 2, 3}, {0, 1, 2}, {1, 1, 2}}));
 }
 
+// Geomview's OFF variants whose vertex lines carry more values (a colour, a
+// normal, texture coordinates), as CGAL's sample meshes and MeshLab write them:
+// the same scene as plain OFF, the extra values ignored.
+TEST(Off, VariantsWithMoreVertexValuesReadAsOff) {
+  const Scene plain = read("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "off");
+  const std::pair<const char*, const char*> variants[] = {
+      {"COFF", " 192 192 192 255"}, {"NOFF", " 0 0 1"}, {"CNOFF", " 0 0 1 0.9 0 0"},
+      {"STOFF", " 0.5 0.5"},        {"STCNOFF", " 0.5 0.5 0 0 1 0.9 0 0 1"}};
+  for (const auto& [header, extra] : variants) {
+    const std::string text = std::string("# a comment\n") + header + "\n3 1 0\n0 0 0" + extra + "\n1 0 0" + extra +
+                             "\n0 1 0" + extra + "\n3 0 1 2\n";
+    const Scene s = read(text, "off");
+    ASSERT_EQ(s.vertices.size(), 3u) << header;
+    for (std::size_t i = 0; i < 3; ++i) {
+      EXPECT_EQ(s.vertices[i].x, plain.vertices[i].x) << header;
+      EXPECT_EQ(s.vertices[i].y, plain.vertices[i].y) << header;
+      EXPECT_EQ(s.vertices[i].z, plain.vertices[i].z) << header;
+    }
+    EXPECT_EQ(s.faces, plain.faces) << header;
+  }
+}
+
 TEST(Off, CountsOnHeaderLineCrlfAndNoEdgeCount) {
   const Scene a = read("OFF 3 1 0\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n", "off");
   EXPECT_EQ(a.faces, (Faces{{0, 1, 2}}));
@@ -503,7 +525,10 @@ std::vector<BadCase> bad_cases() {
       // OFF
       {"off empty", "off", "", "bad.off:1: ", "empty file"},
       {"off no header", "off", "3 1 0\n", "bad.off:1: ", "expected the 'OFF' header, found '3'"},
-      {"off COFF", "off", "COFF\n0 0 0\n", "bad.off:1: ", "'OFF' header"},
+      {"off 4OFF", "off", "4OFF\n0 0 0\n", "bad.off:1: ", "'4OFF': OFF with homogeneous (4OFF)"},
+      {"off nOFF", "off", "CnOFF\n0 0 0\n", "bad.off:1: ", "other-dimensional (nOFF) vertices is not read"},
+      {"off COFFEE", "off", "COFFEE\n0 0 0\n", "bad.off:1: ", "expected the 'OFF' header, found 'COFFEE'"},
+      {"off reversed prefixes", "off", "NCOFF\n0 0 0\n", "bad.off:1: ", "expected the 'OFF' header, found 'NCOFF'"},
       {"off no counts", "off", "OFF\n# nothing\n", "bad.off:2: ", "counts line"},
       {"off count garbage", "off", "OFF\n3x 1 0\n", "bad.off:2: ", "expected the vertex count (a non-negative integer), found '3x'"},
       {"off negative count", "off", "OFF\n-3 1 0\n", "bad.off:2: ", "found '-3'"},

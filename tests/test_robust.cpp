@@ -310,6 +310,8 @@ TEST(Stdin, SceneFromStandardInputByContentOrFormat) {
 TEST(Stdin, SniffFormat) {
   EXPECT_EQ(vismap::sniff_format("OFF\n0 0 0\n"), "off");
   EXPECT_EQ(vismap::sniff_format("# comment\n\n  OFF 3 1 0\n"), "off");
+  EXPECT_EQ(vismap::sniff_format("# colours\nCOFF\n3 1 0\n"), "off");
+  EXPECT_EQ(vismap::sniff_format("STCNOFF 0 0 0\n"), "off");
   EXPECT_EQ(vismap::sniff_format("ply\r\nformat ascii 1.0\n"), "ply");
   EXPECT_EQ(vismap::sniff_format("solid x\n"), "stl");
   EXPECT_EQ(vismap::sniff_format(binary_stl(1, 1)), "stl");

@@ -1,7 +1,8 @@
-// OFF: "OFF" header (counts may follow on the same line), "nv nf [ne]", then
-// one vertex "x y z ..." per line and one face "n i1 .. in ..." per line.
-// '#' starts a comment; blank lines are skipped; values after the ones we need
-// (vertex colours, face colours) are ignored, as is anything after the faces.
+// OFF: "OFF" header (or COFF, NOFF, STOFF...: is_off_header; counts may follow
+// on the same line), "nv nf [ne]", then one vertex "x y z ..." per line and one
+// face "n i1 .. in ..." per line. '#' starts a comment; blank lines are skipped;
+// values after the ones we need (vertex colours, normals and texture
+// coordinates, face colours) are ignored, as is anything after the faces.
 #include <algorithm>
 #include <exception>
 #include <vector>
@@ -119,11 +120,27 @@ std::uint64_t read_body(std::string_view body, std::uint64_t& line, const Record
 
 }  // namespace
 
+bool is_off_header(std::string_view word) {
+  auto take = [&](std::string_view prefix) {
+    if (word.substr(0, prefix.size()) == prefix) word.remove_prefix(prefix.size());
+  };
+  take("ST");
+  take("C");
+  take("N");
+  return word == "OFF";
+}
+
 void read_off(std::string_view bytes, const std::string& name, const ReadLimits& limits, Scene& out) {
   TextCursor c(bytes, name, '#');
   if (!c.skip_blank_lines()) c.fail("empty file; expected the 'OFF' header");
   const std::string_view magic = c.token();
-  if (magic != "OFF") c.fail(cat("expected the 'OFF' header, found ", quote(magic)));
+  const bool other_dimension = magic.size() > 3 && magic.substr(magic.size() - 3) == "OFF" &&
+                               magic.substr(0, magic.size() - 3).find_first_not_of("STCN4n") == std::string_view::npos &&
+                               magic.find_first_of("4n") != std::string_view::npos;
+  if (other_dimension)
+    c.fail(cat(quote(magic), ": OFF with homogeneous (4OFF) or other-dimensional (nOFF) vertices is not read; "
+               "convert it to OFF"));
+  if (!is_off_header(magic)) c.fail(cat("expected the 'OFF' header, found ", quote(magic)));
   if (c.at_eol()) {
     c.next_line();
     if (!c.skip_blank_lines()) c.fail("expected the counts line 'vertices faces edges', found end of file");

@@ -104,6 +104,7 @@ std::string sniff_format(std::string_view bytes) {
   if (i < bytes.size() && bytes[i] == '{') return "vmscene";
   std::size_t j = i;
   while (j < bytes.size() && !is_blank(bytes[j]) && bytes[j] != '#') ++j;
+  if (io::is_off_header(bytes.substr(i, j - i))) return "off";
   const std::string word = lowercase(bytes.substr(i, j - i));
   if (word == "off") return "off";
   if (word == "ply") return "ply";
