@@ -186,13 +186,51 @@ inline int orient_sign(const mpq_class& px, const mpq_class& py, const mpq_class
   return sgn(d);
 }
 
+#ifndef VISMAP_FLOAT_KERNEL
+// A lazy point whose interval never narrows. CGAL refines a construction's
+// interval once its exact value is made; for a point the threads share (a
+// vertex image, a crossing of two curves) which thread made it first would then
+// decide which later filters succeed, and the counts in the JSON must not depend
+// on the thread count (a perspective view's images are quotients whose
+// intervals are a few ulps wide: on a 10^6-triangle terrain the exact
+// predicates counted varied from run to run on two threads). These keep the
+// interval they were made with; the exact value is made on demand, once.
+namespace steady_detail {
+using PointRep = P2::Rep::Self_rep;
+using ExactPoint = K::Exact_kernel::Point_2;
+using ApproxPoint = K::Approximate_kernel::Point_2;
+// The point (x, y) of two lazy numbers.
+class PointOf final : public PointRep {
+ public:
+  PointOf(const FT& x, const FT& y) : PointRep(ApproxPoint(x.approx(), y.approx())), x_(x), y_(y) {}
+  void update_exact() const override {
+    auto* pet = new PointRep::Indirect(ExactPoint(CGAL::exact(x_), CGAL::exact(y_)));
+    this->keep_at(pet);
+    this->set_ptr(pet);
+    x_ = FT();   // (their DAGs are not needed any more)
+    y_ = FT();
+  }
+
+ private:
+  mutable FT x_, y_;
+};
+}  // namespace steady_detail
+// The point (x, y), made once: each lazy point made costs an allocation.
+inline P2 steady_point(const FT& x, const FT& y) {
+  if (x.approx().is_point() && y.approx().is_point()) return P2(x, y);   // (nothing to narrow)
+  return P2(P2::Rep(new steady_detail::PointOf(x, y)));
+}
+#else
+inline P2 steady_point(const FT& x, const FT& y) { return P2(x, y); }
+#endif
+
 // Screen-space point with its depth: (x, y) on the screen, z = depth (smaller = nearer).
-// The point (x, y) is built once: each lazy point made costs an allocation.
+// The point (x, y) is built once, steady (steady_point: the threads share images).
 struct P3 {
   FT x, y, z;
   P2 p;
   P3() = default;
-  P3(const FT& x_, const FT& y_, const FT& z_) : x(x_), y(y_), z(z_), p(x_, y_) {}
+  P3(const FT& x_, const FT& y_, const FT& z_) : x(x_), y(y_), z(z_), p(steady_point(x_, y_)) {}
   P3(const P2& q, const FT& z_) : x(q.x()), y(q.y()), z(z_), p(q) {}
   const P2& xy() const { return p; }
 };
