@@ -13,6 +13,8 @@
 #endif
 #include <CGAL/Interval_nt.h>
 #include <gmpxx.h>
+
+#include <cmath>
 #ifdef VISMAP_FLOAT_KERNEL
 #include <CGAL/Simple_cartesian.h>
 #define VISMAP_KERNEL_NS float_kernel
@@ -214,10 +216,19 @@ class PointOf final : public PointRep {
  private:
   mutable FT x_, y_;
 };
+inline bool bounded(const Interval& i) { return std::isfinite(i.inf()) && std::isfinite(i.sup()); }
+inline bool bounded(const ApproxPoint& p) { return bounded(p.x()) && bounded(p.y()); }
 }  // namespace steady_detail
-// The point (x, y), made once: each lazy point made costs an allocation.
+// The point (x, y), made once: each lazy point made costs an allocation. (Where
+// an interval is unbounded, which would never narrow, the point is made exact
+// now, before any thread shares it.)
 inline P2 steady_point(const FT& x, const FT& y) {
   if (x.approx().is_point() && y.approx().is_point()) return P2(x, y);   // (nothing to narrow)
+  if (!steady_detail::bounded(x.approx()) || !steady_detail::bounded(y.approx())) {
+    const P2 p(x, y);
+    CGAL::exact(p);
+    return p;
+  }
   return P2(P2::Rep(new steady_detail::PointOf(x, y)));
 }
 #else

@@ -1411,6 +1411,14 @@ P2 crossing_point(const P2& a, const P2& b, const P2& c, const P2& d) {
     CGAL::Protect_FPU_rounding<true> upward;
     approx = CrossingOf<K::Approximate_kernel>()(a.approx(), b.approx(), c.approx(), d.approx());
   }
+  // (Segments nearly parallel: an unbounded interval, which would never narrow,
+  // and the assembly buckets points by their intervals. Made exact now, before
+  // any thread shares it: rare.)
+  if (!steady_detail::bounded(approx)) {
+    const auto e = CrossingOf<K::Exact_kernel>::fraction_free(CGAL::exact(a), CGAL::exact(b), CGAL::exact(c),
+                                                              CGAL::exact(d));
+    return steady_point(FT(e.x()), FT(e.y()));
+  }
   return P2(P2::Rep(new CrossingPoint(approx, a, b, c, d)));
 #endif
 }
