@@ -15,6 +15,7 @@
 #include <gmpxx.h>
 
 #include <cmath>
+#include <tuple>
 #ifdef VISMAP_FLOAT_KERNEL
 #include <CGAL/Simple_cartesian.h>
 #define VISMAP_KERNEL_NS float_kernel
@@ -201,21 +202,29 @@ namespace steady_detail {
 using PointRep = P2::Rep::Self_rep;
 using ExactPoint = K::Exact_kernel::Point_2;
 using ApproxPoint = K::Approximate_kernel::Point_2;
-// The point (x, y) of two lazy numbers.
-class PointOf final : public PointRep {
+// A point with the interval `at` whose exact value is make(exact(args)...),
+// made once, on demand; the interval stays. (One class for every such point:
+// steady_point's, crossing_point's, frozen()'s.)
+template <class Make, class... Args>
+class KeptPoint final : public PointRep {
  public:
-  PointOf(const FT& x, const FT& y) : PointRep(ApproxPoint(x.approx(), y.approx())), x_(x), y_(y) {}
+  KeptPoint(const ApproxPoint& at, Make make, const Args&... args) : PointRep(at), make_(make), args_(args...) {}
   void update_exact() const override {
-    auto* pet = new PointRep::Indirect(ExactPoint(CGAL::exact(x_), CGAL::exact(y_)));
+    auto* pet = new PointRep::Indirect(
+        std::apply([&](const Args&... a) { return ExactPoint(make_(CGAL::exact(a)...)); }, args_));
     this->keep_at(pet);
     this->set_ptr(pet);
-    x_ = FT();   // (their DAGs are not needed any more)
-    y_ = FT();
+    args_ = {};   // (their DAGs are not needed any more)
   }
 
  private:
-  mutable FT x_, y_;
+  [[no_unique_address]] Make make_;
+  mutable std::tuple<Args...> args_;
 };
+template <class Make, class... Args>
+P2 kept_point(const ApproxPoint& at, Make make, const Args&... args) {
+  return P2(P2::Rep(new KeptPoint<Make, Args...>(at, make, args...)));
+}
 inline bool bounded(const Interval& i) { return std::isfinite(i.inf()) && std::isfinite(i.sup()); }
 inline bool bounded(const ApproxPoint& p) { return bounded(p.x()) && bounded(p.y()); }
 }  // namespace steady_detail
@@ -229,7 +238,9 @@ inline P2 steady_point(const FT& x, const FT& y) {
     CGAL::exact(p);
     return p;
   }
-  return P2(P2::Rep(new steady_detail::PointOf(x, y)));
+  return steady_detail::kept_point(
+      steady_detail::ApproxPoint(x.approx(), y.approx()),
+      [](const auto& ex, const auto& ey) { return steady_detail::ExactPoint(ex, ey); }, x, y);
 }
 #else
 inline P2 steady_point(const FT& x, const FT& y) { return P2(x, y); }
@@ -270,24 +281,11 @@ class Number final : public CGAL::Lazy_exact_nt_rep<mpq_class> {
  private:
   mutable FT x_;
 };
-using PointRep = P2::Rep::Self_rep;
-class Point final : public PointRep {
- public:
-  explicit Point(const P2& p) : PointRep(p.approx()), p_(p) {}
-  void update_exact() const override {
-    auto* pet = new PointRep::Indirect(CGAL::exact(p_));
-    this->keep_at(pet);
-    this->set_ptr(pet);
-    p_ = P2();
-  }
- private:
-  mutable P2 p_;
-};
 }  // namespace frozen_detail
 inline FT frozen(const FT& x) { return x.approx().is_point() ? x : FT(new frozen_detail::Number(x)); }
 inline P2 frozen(const P2& p) {
   if (p.approx().x().is_point() && p.approx().y().is_point()) return p;
-  return P2(P2::Rep(new frozen_detail::Point(p)));
+  return steady_detail::kept_point(p.approx(), [](const steady_detail::ExactPoint& e) { return e; }, p);
 }
 inline P3 frozen(const P3& a) {
   P3 r;

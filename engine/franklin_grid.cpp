@@ -1380,25 +1380,6 @@ struct CrossingOf {
   }
 };
 
-#ifndef VISMAP_FLOAT_KERNEL
-// The crossing as a lazy point whose interval never narrows (as steady_point's:
-// the two curves through it may be cut and classified on different threads).
-class CrossingPoint final : public steady_detail::PointRep {
- public:
-  CrossingPoint(const steady_detail::ApproxPoint& approx, const P2& a, const P2& b, const P2& c, const P2& d)
-      : steady_detail::PointRep(approx), a_(a), b_(b), c_(c), d_(d) {}
-  void update_exact() const override {
-    auto* pet = new steady_detail::PointRep::Indirect(CrossingOf<K::Exact_kernel>::fraction_free(
-        CGAL::exact(a_), CGAL::exact(b_), CGAL::exact(c_), CGAL::exact(d_)));
-    this->keep_at(pet);
-    this->set_ptr(pet);
-    a_ = b_ = c_ = d_ = P2();   // (their DAGs are not needed any more)
-  }
-
- private:
-  mutable P2 a_, b_, c_, d_;
-};
-#endif
 
 }  // namespace
 
@@ -1419,7 +1400,9 @@ P2 crossing_point(const P2& a, const P2& b, const P2& c, const P2& d) {
                                                               CGAL::exact(d));
     return steady_point(FT(e.x()), FT(e.y()));
   }
-  return P2(P2::Rep(new CrossingPoint(approx, a, b, c, d)));
+  // (Its interval kept, as steady_point's: the two curves through it may be
+  // cut and classified on different threads.)
+  return steady_detail::kept_point(approx, &CrossingOf<K::Exact_kernel>::fraction_free, a, b, c, d);
 #endif
 }
 
