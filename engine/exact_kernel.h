@@ -266,6 +266,7 @@ struct P3 {
 // exact value from the original, on demand. (Precomputing the exact values
 // instead costs ~20% of a perspective view of a soup of triangles.)
 #ifdef VISMAP_FLOAT_KERNEL
+inline P2 frozen(const P2& p) { return p; }
 inline P3 frozen(const P3& a) { return a; }
 #else
 namespace frozen_detail {

@@ -1290,8 +1290,13 @@ bool depth_crossing(const Curve& C, const Curve& D, const P2& lo, const P2& hi, 
   if (depth_gap(C, D, lo, along_x) * depth_gap(C, D, hi, along_x) >= 0) return false;
   FT flo = depth_on(C, lo) - depth_on(D, lo), fhi = depth_on(C, hi) - depth_on(D, hi);
   FT mu = flo / (flo - fhi);
-  x = lo + mu * (hi - lo);
+  x = frozen(lo + mu * (hi - lo));   // (cut into both curves: shared by the threads)
   return true;
+}
+
+P2 plane_crossing(const Curve& C, const Facet& F) {
+  const FT ds = C.s->z - F.depth_at(C.s->xy()), dt = C.t->z - F.depth_at(C.t->xy());
+  return frozen(C.s->xy() + (ds / (ds - dt)) * (C.t->xy() - C.s->xy()));
 }
 
 namespace {
@@ -1489,8 +1494,7 @@ struct Cutter {
     // The sides first, as filtered predicates (an end point in F's plane, often a
     // corner of it, is told in the world), the depths only for a crossing.
     if (depth_above(*C.s, F, ss.world, C.vs) * depth_above(*C.t, F, ss.world, C.vt) >= 0) return;
-    const FT ds = C.s->z - F.depth_at(C.s->xy()), dt = C.t->z - F.depth_at(C.t->xy());
-    const P2 p = C.s->xy() + (ds / (ds - dt)) * (C.t->xy() - C.s->xy());
+    const P2 p = plane_crossing(C, F);
     if (!strictly_inside(F, p)) return;   // on its boundary: that edge's crossing cuts here
     ++row.crossings;
     cut(ci, p);

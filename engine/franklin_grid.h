@@ -122,7 +122,11 @@ inline bool cannot_pierce(const Facet& A, const Facet& B, const EmbeddedStars& s
 CGAL::Sign depth_gap(const Curve& C, const Curve& D, const P2& p, bool along_x);
 // The screen point x where collinear curves C and D have equal depth, strictly
 // between lo and hi on their line; false if their depth order does not change there.
+// (x and plane_crossing's point are cut into curves that threads share: frozen
+// copies, exact_kernel.h, whose intervals do not narrow once exact.)
 bool depth_crossing(const Curve& C, const Curve& D, const P2& lo, const P2& hi, P2& x);
+// Where curve C crosses facet F's depth plane (its ends on either side of it).
+P2 plane_crossing(const Curve& C, const Facet& F);
 
 Grid make_grid(const ScreenScene& ss, double c, int threads, Stats& stats);       // steps 2-4
 void bucket_facets(Grid& g, ScreenScene& ss, bool regions, int threads, Stats& stats);         // step 5

@@ -625,6 +625,47 @@ TEST(Threads, SharedPointsKeepTheirIntervalsOnceExact) {
   ASSERT_TRUE(wider(cross_was.x(), vismap::exact::exact_x(again)) || wider(cross_was.y(), vismap::exact::exact_y(again)));
   EXPECT_EQ(vismap::exact::exact_x(cross), vismap::exact::exact_x(again));
   EXPECT_TRUE(unchanged(cross.approx(), cross_was));
+
+  // The other points cut into curves: where a curve crosses a facet's depth
+  // plane, and where two collinear curves' depths cross.
+  using vismap::engine::Curve;
+  const P3 s(x(), y(), FT(1) / FT(3)), t(FT(5) / FT(3), FT(7) / FT(9), FT(-2) / FT(3));
+  Curve C;
+  C.s = &s;
+  C.t = &t;
+  vismap::engine::Facet F;
+  F.plane = vismap::engine::DepthPlane::of_doubles(0.125, -0.25, 0.0625);   // (s above it, t below)
+  auto plane_crossing_again = [&] {   // (its own DAG: the same formula on fresh numbers)
+    const P3 s2(x(), y(), FT(1) / FT(3)), t2(FT(5) / FT(3), FT(7) / FT(9), FT(-2) / FT(3));
+    Curve C2;
+    C2.s = &s2;
+    C2.t = &t2;
+    const P2 p = vismap::engine::plane_crossing(C2, F);
+    return std::pair(vismap::exact::exact_x(p), vismap::exact::exact_y(p));
+  };
+  const P2 pierce = vismap::engine::plane_crossing(C, F);
+  const auto pierce_was = pierce.approx();
+  const auto [pierce_x, pierce_y] = plane_crossing_again();
+  ASSERT_TRUE(wider(pierce_was.x(), pierce_x) || wider(pierce_was.y(), pierce_y));
+  EXPECT_EQ(vismap::exact::exact_x(pierce), pierce_x);
+  EXPECT_TRUE(unchanged(pierce.approx(), pierce_was));
+
+  // Two curves on the line y = 2x / 3 (x from 0 to 3), one rising in depth, one falling.
+  const P3 a0(FT(0), FT(0), FT(1) / FT(3)), a1(FT(3), FT(2), FT(-1) / FT(7));
+  const P3 b0(FT(0), FT(0), FT(-2) / FT(9)), b1(FT(3), FT(2), FT(5) / FT(11));
+  Curve A, B;
+  A.s = &a0;
+  A.t = &a1;
+  B.s = &b0;
+  B.t = &b1;
+  P2 meet, meet_again;
+  ASSERT_TRUE(vismap::engine::depth_crossing(A, B, a0.xy(), a1.xy(), meet));
+  ASSERT_TRUE(vismap::engine::depth_crossing(A, B, a0.xy(), a1.xy(), meet_again));
+  const auto meet_was = meet.approx();
+  ASSERT_TRUE(wider(meet_was.x(), vismap::exact::exact_x(meet_again)) ||
+              wider(meet_was.y(), vismap::exact::exact_y(meet_again)));
+  EXPECT_EQ(vismap::exact::exact_x(meet), vismap::exact::exact_x(meet_again));
+  EXPECT_TRUE(unchanged(meet.approx(), meet_was));
 }
 
 // The parallel sort gives std::sort's order for a strict total order on every
