@@ -208,9 +208,9 @@ double warped(const Axis& a, double v) {
 }
 
 // The curves' boxes, by index: the curves made, then the latent ones.
-std::size_t curve_count(const ScreenScene& ss) { return ss.curves.size() + ss.latent_box.size(); }
-const CGAL::Bbox_2& curve_box(const ScreenScene& ss, std::size_t i) {
-  return i < ss.curves.size() ? ss.curves[i].box : ss.latent_box[i - ss.curves.size()];
+std::size_t curve_count(const ScreenScene& ss) { return ss.curves.size() + ss.latent_piece.size(); }
+CGAL::Bbox_2 curve_box(const ScreenScene& ss, std::size_t i) {
+  return i < ss.curves.size() ? ss.curves[i].box : latent_box(ss, i - ss.curves.size());
 }
 
 // A facet's share of the depth complexity: its projected area in the grid's own
@@ -261,7 +261,7 @@ double mean_length(const ScreenScene& ss, const Axis& X, const Axis& Y) {
   double sum = 0;
   std::size_t count = 0;
   for (std::size_t i = 0; i < n; i += step, ++count) {
-    const CGAL::Bbox_2& b = curve_box(ss, i);
+    const CGAL::Bbox_2 b = curve_box(ss, i);
     sum += std::hypot(warped(X, b.xmax()) - warped(X, b.xmin()), warped(Y, b.ymax()) - warped(Y, b.ymin()));
   }
   return count ? sum / static_cast<double>(count) : 0;
@@ -293,7 +293,7 @@ std::vector<double> end_coordinates(const ScreenScene& ss, bool x, std::size_t w
   std::vector<double> v;
   v.reserve(2 * n / step + 2);
   for (std::size_t i = 0; i < n; i += step) {
-    const CGAL::Bbox_2& b = curve_box(ss, i);
+    const CGAL::Bbox_2 b = curve_box(ss, i);
     v.push_back(x ? b.xmin() : b.ymin());
     v.push_back(x ? b.xmax() : b.ymax());
   }
@@ -357,7 +357,7 @@ Grid make_grid(const ScreenScene& ss, double c, int threads, Stats& stats) {
   // stays coarse where only the facets fill it (their pair search and hiding
   // tests want a few dozen per cell; measured: the 10^6-triangle terrain at
   // crease 30, lines only, 12 % less time; B 1044 -> 267).
-  const double n = static_cast<double>(ss.curves.size()) + static_cast<double>(ss.latent_box.size()) / 64;
+  const double n = static_cast<double>(ss.curves.size()) + static_cast<double>(ss.latent_piece.size()) / 64;
   const bool sized = any && std::max(box.xmax() - box.xmin(), box.ymax() - box.ymin()) > 0 && n > 0;
   std::vector<double> xs, ys;
   if (sized) {
@@ -506,7 +506,7 @@ DrawingCells drawing_cells(const Grid& g, const ScreenScene& ss, const ImageCell
                            int threads) {
   DrawingCells d;
   const std::vector<WorldPiece>* pieces = latent_pieces_of(ss);
-  if (regions || !occluders_in_one_solid(ss) || (!ss.latent_box.empty() && !pieces)) return d;
+  if (regions || !occluders_in_one_solid(ss) || (!ss.latent_piece.empty() && !pieces)) return d;
   const auto nx = static_cast<std::size_t>(g.X.cells());
   auto each_cell = [&](const CellRange& r, auto&& f) {
     for (int iy = r.y0; iy <= r.y1; ++iy)
@@ -529,15 +529,15 @@ DrawingCells drawing_cells(const Grid& g, const ScreenScene& ss, const ImageCell
     each_cell(r, [&](std::size_t k) { d.cell[k] = 1; });
     for (int f : c.sharers) d.whole[static_cast<std::size_t>(f)] = 1;
   }
-  d.latent_near.assign(ss.latent_box.size(), 0);
-  const int n = static_cast<int>(ss.latent_box.size()), size = 16384;
+  d.latent_near.assign(ss.latent_piece.size(), 0);
+  const int n = static_cast<int>(ss.latent_piece.size()), size = 16384;
   std::vector<std::vector<std::pair<int, CellRange>>> found(static_cast<std::size_t>(chunk_count(n, size)));
   parallel_chunks(n, size, threads, [&](int k, Chunk r) {
     std::vector<std::pair<int, CellRange>> here;   // (filled here, stored once)
     for (int i = r.begin; i < r.end; ++i) {
       CellRange range;   // (its box is its ends' boxes)
       if (!image_cells.hull(latent_ends(ss, static_cast<std::size_t>(i)), 2, range))
-        range = range_of(g, ss.latent_box[static_cast<std::size_t>(i)]);
+        range = range_of(g, latent_box(ss, static_cast<std::size_t>(i)));
       if (near(range)) here.emplace_back(i, range);
     }
     found[static_cast<std::size_t>(k)] = std::move(here);
@@ -1218,11 +1218,11 @@ namespace {
 // Per latent curve: whether its box reaches a cell that holds a drawn curve (the
 // cells the undrawn ones are listed in for a lines-only drawing).
 std::vector<char> latent_near_drawn(const Grid& g, const ScreenScene& ss, int threads) {
-  std::vector<char> wanted(ss.latent_box.size(), 0);
+  std::vector<char> wanted(ss.latent_piece.size(), 0);
   parallel_chunks(static_cast<int>(wanted.size()), 4096, threads, [&](int, Chunk c) {
     for (int i = c.begin; i < c.end; ++i) {
       if (!g.latent_near.empty() && !g.latent_near[static_cast<std::size_t>(i)]) continue;   // (nowhere near)
-      const CellRange r = range_of(g, ss.latent_box[static_cast<std::size_t>(i)]);
+      const CellRange r = range_of(g, latent_box(ss, static_cast<std::size_t>(i)));
       for (int iy = r.y0; iy <= r.y1 && !wanted[i]; ++iy)
         for (int ix = r.x0; ix <= r.x1 && !wanted[i]; ++ix) wanted[i] = !g.at(ix, iy).curves.empty();
     }

@@ -435,9 +435,16 @@ struct CurveMaker {
   void make_clips(int threads);
   bool make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3>& dropped, std::deque<P3>& ends) const;
   // What make() would do with a piece, without making its curve: a lines-only
-  // drawing leaves most pieces latent (only their boxes kept).
+  // drawing leaves most pieces latent (only their numbers kept).
   enum class Verdict { Hidden, Clipped, EndOn, Drawn, Latent };
-  Verdict judge(const WorldPiece& wp, CGAL::Bbox_2& box) const;
+  Verdict judge(const WorldPiece& wp) const;
+  // A latent piece's box, as its curve would have it: its ends' images, or the
+  // near plane's cut points (made by make_clips: looked up).
+  CGAL::Bbox_2 latent_box(const WorldPiece& wp) const {
+    const bool fa = in_front(wp.a), fb = in_front(wp.b);
+    if (fa && fb) return box_of(image(wp.a)) + box_of(image(wp.b));
+    return box_of(fa ? image(wp.a) : clip_point(wp.b, wp.a)) + box_of(fb ? image(wp.b) : clip_point(wp.a, wp.b));
+  }
 
  private:
   // make()'s steps, shared with judge().
@@ -549,9 +556,9 @@ bool CurveMaker::make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3
   return true;
 }
 
-// As make() decides, in the same order; for a piece neither dropped nor drawn,
-// its curve's box. (A cut end's point is one make_clips made: looked up, not kept.)
-CurveMaker::Verdict CurveMaker::judge(const WorldPiece& wp, CGAL::Bbox_2& box) const {
+// As make() decides, in the same order. (A cut end's point is one make_clips
+// made: looked up, not kept.)
+CurveMaker::Verdict CurveMaker::judge(const WorldPiece& wp) const {
   if (!any_occluder(wp)) return Verdict::Hidden;
   SmallInts faces;
   std::array<int, 2> facet;
@@ -560,13 +567,10 @@ CurveMaker::Verdict CurveMaker::judge(const WorldPiece& wp, CGAL::Bbox_2& box) c
   const bool fa = in_front(wp.a), fb = in_front(wp.b);
   if (!fa && !fb) return Verdict::Clipped;
   if (fa && fb) {
-    const P3 &s = image(wp.a), &t = image(wp.b);
-    if (equal_points(s.xy(), t.xy())) return Verdict::EndOn;
-    box = box_of(s) + box_of(t);
+    if (equal_points(image(wp.a).xy(), image(wp.b).xy())) return Verdict::EndOn;
   } else {
     const P3 s = fa ? image(wp.a) : clip_point(wp.b, wp.a), t = fb ? image(wp.b) : clip_point(wp.a, wp.b);
     if (equal_points(s.xy(), t.xy())) return Verdict::EndOn;
-    box = box_of(s) + box_of(t);
   }
   return Verdict::Latent;
 }
@@ -1027,35 +1031,36 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   const int np = static_cast<int>(pieces.size()), size = 1024, chunks = chunk_count(np, size);
   if (!latent) ss.curves.reserve(pieces.size() + ss.facets.size() / 8);   // (+ near-plane cuts; + intersection lines later)
   std::vector<std::array<std::int64_t, 3>> dropped(static_cast<std::size_t>(chunks));
-  std::vector<std::vector<std::pair<int, CGAL::Bbox_2>>> left(static_cast<std::size_t>(chunks));
+  std::vector<std::vector<int>> left(static_cast<std::size_t>(chunks));
   const std::size_t first_ends = ss.ends.size();
   for (int k = 0; k < chunks; ++k) ss.ends.emplace_back();
   parallel_append(ss.curves, chunks, threads, [&](int k, std::vector<Curve>& out) {
     const Chunk r = chunk(k, np, size);
     std::deque<P3>& ends = ss.ends[first_ends + static_cast<std::size_t>(k)];
-    std::vector<std::pair<int, CGAL::Bbox_2>> boxes;   // (filled here, stored once)
+    std::vector<int> latent_here;   // (filled here, stored once)
     std::array<std::int64_t, 3> count{};
     if (!latent) out.reserve(static_cast<std::size_t>(r.end - r.begin));
     Curve c;
     for (int i = r.begin; i < r.end; ++i) {
       const WorldPiece& wp = pieces[static_cast<std::size_t>(i)];
       if (latent) {   // (judged first: most pieces of a lines-only drawing are never made)
-        CGAL::Bbox_2 box;
-        const CurveMaker::Verdict v = M.judge(wp, box);
+        const CurveMaker::Verdict v = M.judge(wp);
         using V = CurveMaker::Verdict;
-        if (v == V::Latent) { boxes.emplace_back(i, box); continue; }
+        if (v == V::Latent) { latent_here.push_back(i); continue; }
         if (v != V::Drawn) { ++count[v == V::Hidden ? 0 : v == V::Clipped ? 1 : 2]; continue; }   // (as make() counts)
       }
       if (M.make(wp, c, count, ends)) out.push_back(std::move(c));
     }
-    left[static_cast<std::size_t>(k)] = std::move(boxes);
+    left[static_cast<std::size_t>(k)] = std::move(latent_here);
     dropped[static_cast<std::size_t>(k)] = count;
   });
-  for (const auto& l : left)
-    for (const auto& [piece, box] : l) {
-      ss.latent_piece.push_back(piece);
-      ss.latent_box.push_back(box);
-    }
+  std::size_t nlatent = 0;
+  for (const auto& l : left) nlatent += l.size();
+  ss.latent_piece.reserve(nlatent);
+  for (auto& l : left) {
+    ss.latent_piece.insert(ss.latent_piece.end(), l.begin(), l.end());
+    std::vector<int>().swap(l);
+  }
   std::int64_t dropped_hidden = 0, dropped_clipped = 0, dropped_point = 0;
   for (const auto& d : dropped) {
     dropped_hidden += d[0];
@@ -1089,8 +1094,8 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   stats.count("edges_seen_end_on", dropped_point);
   ss.planes_later = latent;
   if (latent) {
-    stats.count("curves_latent", static_cast<std::int64_t>(ss.latent_box.size()));
-    if (!ss.latent_box.empty()) ss.maker = std::move(maker);   // (else freed now, as for a whole map)
+    stats.count("curves_latent", static_cast<std::int64_t>(ss.latent_piece.size()));
+    if (!ss.latent_piece.empty()) ss.maker = std::move(maker);   // (else freed now, as for a whole map)
   }
   if (!cull) ss.maker = std::move(maker);   // (the hidden lines' pass reads the world facets)
   return ss;
@@ -1108,6 +1113,9 @@ void make_depth_planes(ScreenScene& ss, const std::vector<char>& which, int thre
 }
 
 const std::vector<WorldPiece>* latent_pieces_of(const ScreenScene& ss) { return ss.maker ? &ss.maker->pieces : nullptr; }
+CGAL::Bbox_2 latent_box(const ScreenScene& ss, std::size_t i) {
+  return ss.maker->latent_box(ss.maker->pieces[static_cast<std::size_t>(ss.latent_piece[i])]);
+}
 std::array<const P3*, 2> latent_ends(const ScreenScene& ss, std::size_t i) {
   const CurveMaker& M = *ss.maker;
   const WorldPiece& wp = M.pieces[static_cast<std::size_t>(ss.latent_piece[i])];
@@ -1131,7 +1139,6 @@ void make_latent_curves(ScreenScene& ss, const std::vector<char>& wanted, int th
         out.push_back(std::move(c));
     }
   });
-  std::vector<CGAL::Bbox_2>().swap(ss.latent_box);
   std::vector<int>().swap(ss.latent_piece);
   ss.maker.reset();
 }

@@ -164,8 +164,9 @@ struct ScreenScene {
                                  // make_depth_planes makes those its cells list)
   const std::vector<Vec3>* world = nullptr;   // the input's vertices (canonical ids index them)
   // Latent curves (lines only, when asked): edge pieces that are not drawn, each
-  // known by its box until make_latent_curves makes the ones a drawing needs.
-  std::vector<CGAL::Bbox_2> latent_box;
+  // known by its piece's number (latent_box: its box, made when asked) until
+  // make_latent_curves makes the ones a drawing needs. (A million latent pieces'
+  // boxes kept were 32 MB, most of them read once or twice.)
   std::vector<int> latent_piece;
   std::shared_ptr<const CurveMaker> maker;
 };
@@ -231,6 +232,8 @@ const WorldFacets* world_facets_of(const ScreenScene& ss);
 void make_depth_planes(ScreenScene& ss, const std::vector<char>& which, int threads);
 // The world's edge pieces that latent curves are made from (ScreenScene::latent_piece), or null.
 const std::vector<WorldPiece>* latent_pieces_of(const ScreenScene& ss);
+// Latent curve i's box, as its curve's would be (its ends' boxes).
+CGAL::Bbox_2 latent_box(const ScreenScene& ss, std::size_t i);
 // Latent curve i's end points as the images they are (ScreenScene::images; its box is
 // theirs), or null for an end cut at the near plane.
 std::array<const P3*, 2> latent_ends(const ScreenScene& ss, std::size_t i);
