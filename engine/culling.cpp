@@ -5,10 +5,44 @@
 #include <numeric>
 
 #include "engine/parallel.h"
+#include "engine/self_contact.h"
 #include "engine/union_find.h"
 #include "engine/world_exact.h"
 
 namespace vismap::engine {
+
+namespace {
+
+// Only a closed surface that does not meet itself (embedded) bounds a solid
+// that every ray from outside enters at its first face: where it crosses
+// itself, it may turn inside out (a fold), and a ray from outside then meets
+// a face from behind first, one that no face of the solid hides (CGAL's
+// elk.off). Such components are not taken as closed (closed[c] = 0).
+void drop_meeting_themselves(const Scene& scene, const WorldFacets& wf, const std::vector<int>& comp,
+                             std::vector<char>& closed, int threads) {
+  const std::size_t n = comp.size();
+  std::vector<int> slot(n, -1);   // per closed component: its list
+  std::vector<std::vector<int>> members;
+  for (std::size_t f = 0; f < n; ++f) {
+    const auto c = static_cast<std::size_t>(comp[f]);
+    if (!closed[c]) continue;
+    if (slot[c] < 0) {
+      slot[c] = static_cast<int>(members.size());
+      members.emplace_back();
+    }
+    members[static_cast<std::size_t>(slot[c])].push_back(static_cast<int>(f));
+  }
+  if (members.empty()) return;
+  // (Its predicates are not counted in the stats: the search stops at the first
+  // contact it finds, and which that is depends on the threads.)
+  const exact::FilterCounts before = exact::filter_counts;
+  const std::vector<char> meets = meets_itself(scene, wf, members, threads);
+  exact::filter_counts = before;
+  for (std::size_t k = 0; k < members.size(); ++k)
+    if (meets[k]) closed[static_cast<std::size_t>(comp[static_cast<std::size_t>(members[k][0])])] = 0;
+}
+
+}  // namespace
 
 ClosedComponents closed_components(const Scene& scene, const WorldFacets& wf, const std::vector<WorldPiece>& pieces,
                                    int threads) {
@@ -33,6 +67,7 @@ ClosedComponents closed_components(const Scene& scene, const WorldFacets& wf, co
   // two back-facing pieces may then be visible. Such components are not culled.
   for (int f = 0; f < n; ++f)
     if (!wf.facets[f].planar) closed[comp[f]] = 0;
+  drop_meeting_themselves(scene, wf, comp, closed, threads);
   ClosedComponents cc;
   cc.side.assign(n, 0);
   // (An open surface, a terrain: no orientation to find, and no per-component

@@ -1,6 +1,7 @@
 // Stage 3: which facets can be skipped because they face away inside a closed,
-// consistently oriented component. Decided exactly; when in doubt (open surface,
-// a non-planar fan) nothing is culled.
+// consistently oriented component that does not meet itself. Decided exactly;
+// when in doubt (open surface, a non-planar fan, a surface crossing or touching
+// itself) nothing is culled.
 //
 // A ray from the eye starts at the near plane (what lies before it is clipped).
 // If it starts outside a closed solid, the first face of the solid it meets is
@@ -23,9 +24,9 @@ namespace vismap::engine {
 
 struct ClosedComponents {
   std::vector<int> component;        // per facet: its connected component (a facet index)
-  // Per facet: +1 = part of an outward-oriented closed component (its back-facing
-  // facets are hidden), -1 = inward-oriented (its front-facing facets are
-  // hidden), 0 = nothing can be said.
+  // Per facet: +1 = part of an outward-oriented closed component that does not
+  // meet itself (its back-facing facets are hidden), -1 = inward-oriented (its
+  // front-facing facets are hidden), 0 = nothing can be said.
   std::vector<std::int8_t> side;
 };
 ClosedComponents closed_components(const Scene& scene, const WorldFacets& wf, const std::vector<WorldPiece>& pieces,

@@ -16,7 +16,6 @@
 #include "engine/lazy_leaves.h"
 #include "engine/morton.h"
 #include "engine/parallel.h"
-#include "engine/self_contact.h"
 #include "engine/world_exact.h"
 
 namespace vismap::engine {
@@ -670,31 +669,16 @@ NearCut near_cut(const ScreenScene& ss, const CurveMaker& M, const std::vector<s
   return cut;
 }
 
-// Parity tells the inside of a cap only where the component does not meet
-// itself: facets of the other components stay occluders. The facets of those
-// that do not are marked as parts of a solid (ScreenScene::solid).
-void keep_where_meeting_itself(std::vector<char>& hidden, const ClosedComponents& cc, const CurveMaker& M,
-                               std::vector<int>& solid, int threads) {
+// The components whose front faces a cap hides are solids (closed, not
+// meeting themselves: closed_components): their facets are marked as such
+// (ScreenScene::solid).
+void mark_solids(const std::vector<char>& hidden, const ClosedComponents& cc, std::vector<int>& solid) {
   const std::size_t n = hidden.size();
-  std::vector<int> slot(n, -1);   // per component with a hidden facet: its list
-  std::vector<std::vector<int>> members;
-  for (std::size_t fi = 0; fi < n; ++fi) {
-    const auto c = static_cast<std::size_t>(cc.component[fi]);
-    if (hidden[fi] && slot[c] < 0) {
-      slot[c] = static_cast<int>(members.size());
-      members.emplace_back();
-    }
-  }
+  std::vector<char> has_hidden(n, 0);   // per component
   for (std::size_t fi = 0; fi < n; ++fi)
-    if (const int k = slot[static_cast<std::size_t>(cc.component[fi])]; k >= 0)
-      members[static_cast<std::size_t>(k)].push_back(static_cast<int>(fi));
-  const std::vector<char> meets = meets_itself(*M.scene, M.wf, members, threads);
-  for (std::size_t k = 0; k < members.size(); ++k) {
-    for (int fi : members[k]) {
-      if (meets[k]) hidden[static_cast<std::size_t>(fi)] = 0;
-      else solid[static_cast<std::size_t>(fi)] = cc.component[static_cast<std::size_t>(fi)];
-    }
-  }
+    if (hidden[fi]) has_hidden[static_cast<std::size_t>(cc.component[fi])] = 1;
+  for (std::size_t fi = 0; fi < n; ++fi)
+    if (has_hidden[static_cast<std::size_t>(cc.component[fi])]) solid[fi] = cc.component[fi];
 }
 
 // Closed components hide their own faces (engine/culling.h, engine/cap_inside.h):
@@ -703,7 +687,7 @@ void keep_where_meeting_itself(std::vector<char>& hidden, const ClosedComponents
 // one starts inside (its image within a cap), the facets seen from the front.
 // They stop being occluders (counted).
 void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& view, const std::vector<std::int8_t>& zsign,
-                     const ClosedComponents& cc, int threads, Stats& stats) {
+                           const ClosedComponents& cc, Stats& stats) {
   const std::size_t n = ss.facets.size();
   ss.solid.assign(n, -1);
   // (No closed component, an open surface: nothing to cull, nor any per-facet
@@ -749,7 +733,7 @@ void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& vie
       point[fi] = &ss.facets[fi].v[0].xy();
     }
     hidden_front = inside_caps(cc, cut.segments, candidate, facet_box, point);
-    keep_where_meeting_itself(hidden_front, cc, M, ss.solid, threads);
+    mark_solids(hidden_front, cc, ss.solid);
   }
   std::int64_t back = 0, front = 0;
   for (std::size_t fi = 0; fi < n; ++fi) {
@@ -1012,7 +996,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   stats.count("culled_edge_on", edge_on);
 
   if (cull) {
-    cull_by_closed_solids(ss, M, view, zsign, closed, threads, stats);
+    cull_by_closed_solids(ss, M, view, zsign, closed, stats);
     mark_height_fields(ss, height_field, stats);
   }
 

@@ -151,6 +151,29 @@ TEST(SelfContact, ComponentsAnsweredTogetherAsAlone) {
   EXPECT_EQ(alone[1], 1);
 }
 
+// A closed, consistently oriented surface of positive volume that crosses
+// itself turns inside out where it does: a cube whose roof's apex is pushed down
+// through its floor (tests/data/cube_dent_through.off), seen from below, shows
+// the spike's faces from behind, and nothing of the solid hides them. It is not
+// taken as closed (nothing culled); the same cube with its apex above the roof is.
+TEST(ClosedComponents, SurfacesThatCrossThemselvesAreNotClosed) {
+  auto cube_with_apex = [](double z) {
+    Scene s;
+    s.file = "cube";
+    s.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}, {0.5, 0.5, z}};
+    s.faces = {{0, 3, 2, 1}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7},
+               {4, 5, 8},    {5, 6, 8},    {6, 7, 8},    {7, 4, 8}};
+    return s;
+  };
+  for (const double z : {1.5, -0.5}) {
+    const Scene s = cube_with_apex(z);
+    const WorldFacets wf = make_world_facets(s);
+    const ClosedComponents cc = closed_components(s, wf, match_edges(s, wf));
+    ASSERT_EQ(cc.side.size(), wf.facets.size());
+    for (const std::int8_t side : cc.side) EXPECT_EQ(side, z > 1 ? 1 : 0) << "apex at z = " << z;
+  }
+}
+
 // Per facet: its height-field label (or -1), on `threads` threads.
 std::vector<int> height_fields(const Scene& s, int threads = 1) {
   const WorldFacets wf = make_world_facets(s);
