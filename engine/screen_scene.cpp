@@ -669,18 +669,6 @@ NearCut near_cut(const ScreenScene& ss, const CurveMaker& M, const std::vector<s
   return cut;
 }
 
-// The components whose front faces a cap hides are solids (closed, not
-// meeting themselves: closed_components): their facets are marked as such
-// (ScreenScene::solid).
-void mark_solids(const std::vector<char>& hidden, const ClosedComponents& cc, std::vector<int>& solid) {
-  const std::size_t n = hidden.size();
-  std::vector<char> has_hidden(n, 0);   // per component
-  for (std::size_t fi = 0; fi < n; ++fi)
-    if (hidden[fi]) has_hidden[static_cast<std::size_t>(cc.component[fi])] = 1;
-  for (std::size_t fi = 0; fi < n; ++fi)
-    if (has_hidden[static_cast<std::size_t>(cc.component[fi])]) solid[fi] = cc.component[fi];
-}
-
 // Closed components hide their own faces (engine/culling.h, engine/cap_inside.h):
 // where every ray towards a facet starts outside the solid (its image apart from
 // the caps of the near plane's cut), the facets seen from behind; where every
@@ -733,7 +721,6 @@ void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& vie
       point[fi] = &ss.facets[fi].v[0].xy();
     }
     hidden_front = inside_caps(cc, cut.segments, candidate, facet_box, point);
-    mark_solids(hidden_front, cc, ss.solid);
   }
   std::int64_t back = 0, front = 0;
   for (std::size_t fi = 0; fi < n; ++fi) {
@@ -748,6 +735,10 @@ void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& vie
       ++back;
     }
   }
+  // A closed component taken as such does not meet itself (closed_components):
+  // a solid, whose facets never pierce each other.
+  for (std::size_t fi = 0; fi < n; ++fi)
+    if (cc.side[fi] != 0) ss.solid[fi] = cc.component[fi];
   stats.count("culled_back_faces", back);
   stats.count("culled_front_faces_in_caps", front);
   stats.count("near_plane_caps", static_cast<std::int64_t>(caps.size()));

@@ -150,7 +150,7 @@ struct ScreenScene {
   std::vector<P3> images;        // the used vertices' images (before the facets: they refer to them)
   std::vector<Facet> facets;
   // Per facet: its component where that is known not to meet itself (a closed
-  // one, engine/self_contact.h, tested where a near-plane cap culls from inside;
+  // one that closed_components took as such, having tested it: engine/culling.h;
   // an open surface that is a graph over a plane, engine/height_fields.h), else
   // -1. Two facets of one such solid never pierce each other.
   std::vector<int> solid;
