@@ -245,17 +245,31 @@ bool same_line(const Item& a, const Item& b) {
 struct LineKey {
   Interval slope, offset;
 };
+// The same keys from the ends' exact values, as the tightest intervals around
+// them: for an item so short that its ends' intervals overlap (its direction,
+// on intervals, any), whose key would otherwise be unbounded and overlap every
+// other, making all the items one cluster, tested pairwise (a map segment of
+// CGAL's cheese.off: 33 144 items, 11 s).
+LineKey exact_key_of(const Item& it) {
+  const mpq_class x0 = exact_x(it.lo), y0 = exact_y(it.lo);
+  const mpq_class dx = exact_x(it.hi) - x0, dy = exact_y(it.hi) - y0;
+  const mpq_class norm = abs(dx) + abs(dy);
+  if (sgn(norm) == 0) return {Interval::largest(), Interval::largest()};   // (no line: never two equal ends)
+  const mpq_class nx = dx / norm, ny = dy / norm, offset = x0 * ny - y0 * nx;
+  return {Interval(CGAL::to_interval(ny)), Interval(CGAL::to_interval(offset))};
+}
 LineKey key_of(const Item& it) {
-  CGAL::Protect_FPU_rounding<true> upward;
-  const Interval x0 = approx_x(it.lo), y0 = approx_y(it.lo);
-  const Interval dx = approx_x(it.hi) - x0, dy = approx_y(it.hi) - y0;
-  const Interval norm = CGAL::abs(dx) + CGAL::abs(dy);
-  const Interval nx = dx / norm, ny = dy / norm;
-  const LineKey k{ny, x0 * ny - y0 * nx};
-  // (A NaN bound, from intervals too wide to say anything, would break the sort:
-  // such a key overlaps every other one instead.)
-  auto sure = [](const Interval& v) { return std::isnan(v.inf()) || std::isnan(v.sup()) ? Interval::largest() : v; };
-  return {sure(k.slope), sure(k.offset)};
+  LineKey k;
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const Interval x0 = approx_x(it.lo), y0 = approx_y(it.lo);
+    const Interval dx = approx_x(it.hi) - x0, dy = approx_y(it.hi) - y0;
+    const Interval norm = CGAL::abs(dx) + CGAL::abs(dy);
+    const Interval nx = dx / norm, ny = dy / norm;
+    k = {ny, x0 * ny - y0 * nx};
+  }
+  auto bounded = [](const Interval& v) { return std::isfinite(v.inf()) && std::isfinite(v.sup()); };
+  return bounded(k.slope) && bounded(k.offset) ? k : exact_key_of(it);
 }
 
 // Splits idx[begin, end) into runs whose intervals (key(i)) overlap, one after
