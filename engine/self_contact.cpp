@@ -30,30 +30,52 @@ struct Triangle {
 
 // The fans of the facets, without the triangles whose corners are collinear
 // (those lie on their facet's border, which its other triangles hold), and
-// how many vertices they have. `slot` (per canonical id, ~0u) numbers them,
-// and is left as it was found.
+// how many vertices they have, numbered 0, 1, ... by `local(id, count)` (which
+// gives a new one the number count, then counted).
 struct Fans {
   std::vector<Triangle> tris;
   std::uint32_t vertices = 0;
 };
-Fans fans(const Scene& scene, const WorldFacets& wf, const std::vector<int>& facets, std::vector<std::uint32_t>& slot) {
+template <class Local>
+Fans fans(const Scene& scene, const WorldFacets& wf, const std::vector<int>& facets, Local&& local) {
   Fans out;
-  auto local = [&](std::uint32_t id) {
-    if (slot[id] == ~0u) slot[id] = out.vertices++;
-    return slot[id];
-  };
+  auto number = [&](std::uint32_t id) { return local(id, out.vertices); };
   for (int fi : facets) {
     const auto& v = wf.facets[static_cast<std::size_t>(fi)].v;
     for (std::size_t k = 1; k + 1 < v.size(); ++k)
       if (!world::collinear(scene.vertices[v[0]], scene.vertices[v[k]], scene.vertices[v[k + 1]]))
         out.tris.push_back({{v[0], v[k], v[k + 1]},
-                            {local(v[0]), local(v[k]), local(v[k + 1])},
+                            {number(v[0]), number(v[k]), number(v[k + 1])},
                             {&scene.vertices[v[0]], &scene.vertices[v[k]], &scene.vertices[v[k + 1]]},
                             fi});
   }
+  return out;
+}
+// Numbered through `slot` (per canonical id, ~0u), which is left as it was found.
+Fans fans(const Scene& scene, const WorldFacets& wf, const std::vector<int>& facets, std::vector<std::uint32_t>& slot) {
+  Fans out = fans(scene, wf, facets, [&](std::uint32_t id, std::uint32_t& count) {
+    if (slot[id] == ~0u) slot[id] = count++;
+    return slot[id];
+  });
   for (const Triangle& t : out.tris)
     for (auto id : t.v) slot[id] = ~0u;
   return out;
+}
+// Numbered through a sorted list of the facets' vertex ids (a small component,
+// on a thread of its own: no table the size of the scene).
+Fans fans(const Scene& scene, const WorldFacets& wf, const std::vector<int>& facets) {
+  std::vector<std::uint32_t> ids;
+  for (int fi : facets)
+    for (auto id : wf.facets[static_cast<std::size_t>(fi)].v) ids.push_back(id);
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  // (Numbers by rank among the ids, then made consecutive in order of use.)
+  std::vector<std::uint32_t> slot(ids.size(), ~0u);
+  return fans(scene, wf, facets, [&](std::uint32_t id, std::uint32_t& count) {
+    std::uint32_t& s = slot[static_cast<std::size_t>(std::lower_bound(ids.begin(), ids.end(), id) - ids.begin())];
+    if (s == ~0u) s = count++;
+    return s;
+  });
 }
 
 // Vertex stars that lie flat along a coordinate axis. On a mesh, nearly every
@@ -296,10 +318,24 @@ bool meets(const Fans& fans, int threads) {
 
 std::vector<char> meets_itself(const Scene& scene, const WorldFacets& wf, const std::vector<std::vector<int>>& components,
                                int threads) {
-  std::vector<std::uint32_t> slot(scene.vertices.size(), ~0u);   // (one table for all, left as found)
-  std::vector<char> out;
-  out.reserve(components.size());
-  for (const std::vector<int>& facets : components) out.push_back(meets(fans(scene, wf, facets, slot), threads));
+  // Large components one after another, each on the threads; small ones (a
+  // city's buildings, a lattice of boxes: thousands of them) side by side, each
+  // on one thread (a loop on the threads for each cost more than its test).
+  constexpr std::size_t kLarge = 4096;   // facets
+  std::vector<char> out(components.size(), 0);
+  std::vector<std::uint32_t> slot;   // (one table for the large ones, left as found)
+  std::vector<int> small;
+  for (std::size_t k = 0; k < components.size(); ++k) {
+    if (components[k].size() < kLarge) { small.push_back(static_cast<int>(k)); continue; }
+    if (slot.empty()) slot.assign(scene.vertices.size(), ~0u);
+    out[k] = meets(fans(scene, wf, components[k], slot), threads);
+  }
+  parallel_chunks(static_cast<int>(small.size()), 64, threads, [&](int, Chunk r) {
+    for (int i = r.begin; i < r.end; ++i) {
+      const auto k = static_cast<std::size_t>(small[static_cast<std::size_t>(i)]);
+      out[k] = meets(fans(scene, wf, components[k]), 1);
+    }
+  });
   return out;
 }
 
