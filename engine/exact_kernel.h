@@ -283,9 +283,22 @@ class Number final : public CGAL::Lazy_exact_nt_rep<mpq_class> {
   mutable FT x_;
 };
 }  // namespace frozen_detail
-inline FT frozen(const FT& x) { return x.approx().is_point() ? x : FT(new frozen_detail::Number(x)); }
+// (An unbounded interval, which would never narrow, is made exact now, before
+// any thread shares the value, as steady_point does.)
+inline FT frozen(const FT& x) {
+  if (x.approx().is_point()) return x;
+  if (!steady_detail::bounded(x.approx())) {
+    CGAL::exact(x);
+    return x;
+  }
+  return FT(new frozen_detail::Number(x));
+}
 inline P2 frozen(const P2& p) {
   if (p.approx().x().is_point() && p.approx().y().is_point()) return p;
+  if (!steady_detail::bounded(p.approx())) {
+    CGAL::exact(p);
+    return p;
+  }
   return steady_detail::kept_point(p.approx(), [](const steady_detail::ExactPoint& e) { return e; }, p);
 }
 inline P3 frozen(const P3& a) {
