@@ -107,7 +107,8 @@ class ImageHeights {
  public:
   ImageHeights(const ScreenScene& ss, int threads) : images_(ss.images.data()), y_(ss.images.size()) {
     parallel_chunks(static_cast<int>(y_.size()), 4096, threads, [&](int, Chunk r) {
-      for (int u = r.begin; u < r.end; ++u) y_[static_cast<std::size_t>(u)] = approx_of(images_[u].y);
+      for (int u = r.begin; u < r.end; ++u)   // (a slot not made: behind the near plane, never asked)
+        if (ss.images.made(static_cast<std::size_t>(u))) y_[static_cast<std::size_t>(u)] = approx_of(images_[u].y);
     });
   }
   // Whether image a is on or below the horizontal line through image v,

@@ -49,9 +49,10 @@ class ImageCells {
   ImageCells(const Grid& g, const ScreenScene& ss, int threads) : images_(ss.images), range_(ss.images.size()) {
     parallel_chunks(static_cast<int>(range_.size()), 8192, threads, [&](int, Chunk r) {
       for (int i = r.begin; i < r.end; ++i) {
-        const P3& p = images_[static_cast<std::size_t>(i)];
-        const auto x = CGAL::to_interval(p.x), y = CGAL::to_interval(p.y);   // (as a box of it takes them)
-        range_[static_cast<std::size_t>(i)] = range_of(g, CGAL::Bbox_2(x.first, y.first, x.second, y.second));
+        const P3& p = images_[static_cast<std::size_t>(i)];   // (a slot: perhaps not made)
+        if (!ss.kept_bounds(p) && !images_.made(static_cast<std::size_t>(i))) continue;   // (behind the near plane)
+        const Interval x = ss.x_of(p), y = ss.y_of(p);   // (as a box of it takes them)
+        range_[static_cast<std::size_t>(i)] = range_of(g, CGAL::Bbox_2(x.inf(), y.inf(), x.sup(), y.sup()));
       }
     });
   }
@@ -73,7 +74,7 @@ class ImageCells {
     return &range_[static_cast<std::size_t>(p - images_.data())];
   }
   const CellRange* of(const P3& p) const { return of(&p); }
-  const std::vector<P3>& images_;
+  const ImageTable& images_;
   std::vector<CellRange> range_;
 };
 
@@ -216,14 +217,13 @@ CGAL::Bbox_2 curve_box(const ScreenScene& ss, std::size_t i) {
 // A facet's share of the depth complexity: its projected area in the grid's own
 // coordinates (doubles: it only sizes the grid), scaled by how its bounding box
 // is stretched there; 0 for a facet that hides nothing.
-double facet_area(const Facet& f, const Axis& X, const Axis& Y) {
+double facet_area(const ScreenScene& ss, const Facet& f, const Axis& X, const Axis& Y) {
   if (!f.occluder) return 0;
   const std::size_t n = f.v.size();
   double a = 0;
   for (std::size_t k = 0; k < n; ++k) {
     const P3 &p = f.v[k], &q = f.v[(k + 1) % n];
-    a += CGAL::to_double(approx_of(p.x)) * CGAL::to_double(approx_of(q.y)) -
-         CGAL::to_double(approx_of(q.x)) * CGAL::to_double(approx_of(p.y));
+    a += CGAL::to_double(ss.x_of(p)) * CGAL::to_double(ss.y_of(q)) - CGAL::to_double(ss.x_of(q)) * CGAL::to_double(ss.y_of(p));
   }
   const double w = f.box.xmax() - f.box.xmin(), h = f.box.ymax() - f.box.ymin();
   if (!(w > 0 && h > 0)) return 0;
@@ -245,7 +245,7 @@ double depth_complexity(const ScreenScene& ss, const Axis& X, const Axis& Y, int
   std::vector<double> part(static_cast<std::size_t>(chunk_count(n, size)), 0);
   parallel_chunks(n, size, threads, [&](int c, Chunk r) {
     double sum = 0;
-    for (int i = r.begin; i < r.end; ++i) sum += facet_area(ss.facets[static_cast<std::size_t>(i) * step], X, Y);
+    for (int i = r.begin; i < r.end; ++i) sum += facet_area(ss, ss.facets[static_cast<std::size_t>(i) * step], X, Y);
     part[static_cast<std::size_t>(c)] = sum;
   });
   double area = 0;
@@ -584,7 +584,17 @@ void bucket_facets(Grid& g, ScreenScene& ss, bool regions, int threads, Stats& s
     listed[static_cast<std::size_t>(fi)] = ss.facets[fi].occluder && any;
     return listed[static_cast<std::size_t>(fi)] ? std::array<int, 2>{r.y0, r.y1} : kNoRows;
   });
-  // The depth planes of what is listed (and only of that, for a lines-only drawing).
+  // The images of what steps 5-11 may read (where they are left for later: a
+  // lines-only drawing's), the listed facets' and those of the candidates'
+  // sharers; then the depth planes of what is listed (and only of that, for a
+  // lines-only drawing).
+  if (only.all()) {
+    make_corner_images(ss, {}, threads);
+  } else {
+    std::vector<char> read(listed);
+    for (std::size_t fi = 0; fi < read.size(); ++fi) read[fi] |= only.whole[fi];
+    make_corner_images(ss, read, threads);
+  }
   if (ss.planes_later) make_depth_planes(ss, listed, threads);
   std::vector<std::vector<int>> kept_by_row(rows.size());
   std::vector<std::array<std::int64_t, 2>> counts(rows.size());   // skipped, blockers

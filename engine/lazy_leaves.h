@@ -232,6 +232,30 @@ class PlaneRep final : public SourceLeaf {
 };
 #endif
 
+#ifndef VISMAP_FLOAT_KERNEL
+// The interval projected_number's value has (that of the number it makes).
+inline Interval projected_interval(const ExactSource& source, std::uint32_t v, int r, bool scaled) {
+  std::pair<double, double> i;
+  if (!projected_bounds(source.m[static_cast<std::size_t>(r)], (*source.vertices)[v], scaled ? source.k : 0, i.first,
+                        i.second))
+    i = source.row_at(r, v, scaled).to_interval();
+  return Interval(i.first, i.second);
+}
+
+// The interval perspective_number's value has.
+inline Interval perspective_interval(const ExactSource& source, std::uint32_t v, int r) {
+  std::pair<double, double> in, iw;
+  const Vec3& p = (*source.vertices)[v];
+  if (!projected_bounds(source.m[static_cast<std::size_t>(r)], p, source.k, in.first, in.second))
+    in = source.row_at(r, v, true).to_interval();
+  // (W > 0: an interval reaching 0 would make the quotient's unbounded.)
+  if (!projected_bounds(source.m[3], p, 0, iw.first, iw.second) || !(iw.first > 0))
+    iw = source.row_at(3, v, false).to_interval();
+  CGAL::Protect_FPU_rounding<true> upward;
+  return Interval(in.first, in.second) / Interval(iw.first, iw.second);
+}
+#endif
+
 // Row r of the view applied to input vertex v (times 2^k if scaled) as a kernel
 // number: a double where it is one exactly (views along an axis), else a lazy
 // leaf of the exact value.
@@ -241,12 +265,9 @@ inline FT projected_number(const ExactSource& source, std::uint32_t v, int r, bo
   const Vec3& p = (*source.vertices)[v];
   return std::ldexp(row[0] * p.x + row[1] * p.y + row[2] * p.z + row[3], scaled ? source.k : 0);
 #else
-  std::pair<double, double> i;
-  if (!projected_bounds(source.m[static_cast<std::size_t>(r)], (*source.vertices)[v], scaled ? source.k : 0, i.first,
-                        i.second))
-    i = source.row_at(r, v, scaled).to_interval();
-  if (i.first == i.second) return FT(i.first);
-  return FT(new ProjectedRep(Interval(i.first, i.second), source, v, r, scaled));
+  const Interval i = projected_interval(source, v, r, scaled);
+  if (i.is_point()) return FT(i.inf());
+  return FT(new ProjectedRep(i, source, v, r, scaled));
 #endif
 }
 
@@ -259,18 +280,7 @@ inline FT perspective_number(const ExactSource& source, std::uint32_t v, int r) 
   return std::ldexp((n[0] * p.x + n[1] * p.y + n[2] * p.z + n[3]) / (w[0] * p.x + w[1] * p.y + w[2] * p.z + w[3]),
                     source.k);
 #else
-  std::pair<double, double> in, iw;
-  const Vec3& p = (*source.vertices)[v];
-  if (!projected_bounds(source.m[static_cast<std::size_t>(r)], p, source.k, in.first, in.second))
-    in = source.row_at(r, v, true).to_interval();
-  // (W > 0: an interval reaching 0 would make the quotient's unbounded.)
-  if (!projected_bounds(source.m[3], p, 0, iw.first, iw.second) || !(iw.first > 0))
-    iw = source.row_at(3, v, false).to_interval();
-  Interval q;
-  {
-    CGAL::Protect_FPU_rounding<true> upward;
-    q = Interval(in.first, in.second) / Interval(iw.first, iw.second);
-  }
+  const Interval q = perspective_interval(source, v, r);
   if (q.is_point()) return FT(q.inf());
   return FT(new PerspectiveRep(q, source, v, r));
 #endif

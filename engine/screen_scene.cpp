@@ -99,17 +99,41 @@ int screen_scale(const Scene& scene, const std::vector<std::uint32_t>& used, con
 }
 
 // x * 2^k, exactly: a double when it still is one exactly.
+// A lines-only drawing may leave the images for later (make_screen_scene); the
+// float variant makes them at once (its numbers are doubles).
+#ifdef VISMAP_FLOAT_KERNEL
+constexpr bool can_defer_images = false;
+#else
+constexpr bool can_defer_images = true;
+#endif
+
+// x 2^k as a double where it is one exactly (no underflow, no overflow).
+bool scales_exactly(double x, int k, double& y) {
+  y = std::ldexp(x, k);
+  return x == 0 || (std::isfinite(y) && std::abs(y) >= 0x1p-1022);
+}
 FT scaled(double x, int k) {
-  const double y = std::ldexp(x, k);
-  if (x == 0 || (std::isfinite(y) && std::abs(y) >= 0x1p-1022)) return FT(y);
+  double y;
+  if (scales_exactly(x, k, y)) return FT(y);
   mpq_class q(x);
   times_pow2(q, k);
   return from_mpq(q);
+}
+// The interval of scaled(x, k), without making the number where it is a double.
+Interval scaled_interval(double x, int k) {
+  double y;
+  return scales_exactly(x, k, y) ? Interval(y) : approx_of(scaled(x, k));
 }
 
 CGAL::Bbox_2 box_of(const P3& p) {
   auto ix = CGAL::to_interval(p.x), iy = CGAL::to_interval(p.y);
   return CGAL::Bbox_2(ix.first, iy.first, ix.second, iy.second);
+}
+// The same for a corner or curve end of ss, from its kept intervals where its
+// image is left for later.
+CGAL::Bbox_2 box_at(const ScreenScene& ss, const P3& p) {
+  const ImageBounds* b = ss.kept_bounds(p);
+  return b ? CGAL::Bbox_2(b->x.inf(), b->y.inf(), b->x.sup(), b->y.sup()) : box_of(p);
 }
 
 // World point on segment p->q where the near plane (Z = 0) cuts it.
@@ -377,6 +401,7 @@ struct CurveMaker {
   std::vector<std::uint32_t> used;    // place -> input index: vertices in the order facets first use them
   std::vector<std::uint32_t> local;   // input index -> place in used
   const P3* sv = nullptr;             // images, by place (the screen scene's table)
+  const ImageBounds* bounds = nullptr;   // their intervals, by place, where they are left for later
   std::vector<char> front;            // in front of the near plane, by place
   const ExactSource* exact = nullptr;   // (the screen scene's)
   std::vector<std::vector<P3>> clip_edges;   // per facet: its cut by the near plane (perspective only)
@@ -398,6 +423,18 @@ struct CurveMaker {
 
   bool in_front(std::uint32_t id) const { return front[local[id]] != 0; }
   const P3& image(std::uint32_t id) const { return sv[local[id]]; }
+  // The image of the vertex at place u (in front of the near plane), made now.
+  P3 make_image(std::uint32_t u) const;
+  // Its intervals, as the image made would have them.
+  ImageBounds bounds_of(std::uint32_t u) const;
+  // The box of vertex id's image (its kept intervals where it is left for later).
+  CGAL::Bbox_2 image_box(std::uint32_t id) const {
+    if (!bounds) return box_of(image(id));
+    const ImageBounds& b = bounds[local[id]];
+    return CGAL::Bbox_2(b.x.inf(), b.y.inf(), b.x.sup(), b.y.sup());
+  }
+  // Whether vertices a and b (in front) have one image on the screen, exactly.
+  bool same_image(std::uint32_t a, std::uint32_t b) const;
   WorldPoint world(std::uint32_t id) const {
     const Vec3& p = scene->vertices[id];
     return WorldPoint{FT(p.x), FT(p.y), FT(p.z)};
@@ -441,8 +478,8 @@ struct CurveMaker {
   // near plane's cut points (made by make_clips: looked up).
   CGAL::Bbox_2 latent_box(const WorldPiece& wp) const {
     const bool fa = in_front(wp.a), fb = in_front(wp.b);
-    if (fa && fb) return box_of(image(wp.a)) + box_of(image(wp.b));
-    return box_of(fa ? image(wp.a) : clip_point(wp.b, wp.a)) + box_of(fb ? image(wp.b) : clip_point(wp.a, wp.b));
+    if (fa && fb) return image_box(wp.a) + image_box(wp.b);
+    return (fa ? image_box(wp.a) : box_of(clip_point(wp.b, wp.a))) + (fb ? image_box(wp.b) : box_of(clip_point(wp.a, wp.b)));
   }
 
  private:
@@ -566,13 +603,80 @@ CurveMaker::Verdict CurveMaker::judge(const WorldPiece& wp) const {
   const bool fa = in_front(wp.a), fb = in_front(wp.b);
   if (!fa && !fb) return Verdict::Clipped;
   if (fa && fb) {
-    if (equal_points(image(wp.a).xy(), image(wp.b).xy())) return Verdict::EndOn;
+    if (same_image(wp.a, wp.b)) return Verdict::EndOn;
   } else {
     const P3 s = fa ? image(wp.a) : clip_point(wp.b, wp.a), t = fb ? image(wp.b) : clip_point(wp.a, wp.b);
     if (equal_points(s.xy(), t.xy())) return Verdict::EndOn;
   }
   return Verdict::Latent;
 }
+
+P3 CurveMaker::make_image(std::uint32_t u) const {
+  const std::uint32_t id = used[u];
+  if (!view->perspective) {
+    // Each coordinate is a double where it is one exactly, else a lazy leaf:
+    // its interval now, its rational only if ever needed.
+    const Vec3& p = scene->vertices[id];
+    auto coordinate = [&](int r) {
+      double d;
+      return exact_in_doubles(view->m[r], p, d) ? scaled(d, k) : projected_number(*exact, id, r, true);
+    };
+    return P3{coordinate(0), coordinate(1), coordinate(2)};
+  }
+  // Perspective: X/W, Y/W, Z/W as lazy leaves (the quotient's interval now).
+  return P3{perspective_number(*exact, id, 0), perspective_number(*exact, id, 1), perspective_number(*exact, id, 2)};
+}
+
+ImageBounds CurveMaker::bounds_of(std::uint32_t u) const {
+#ifdef VISMAP_FLOAT_KERNEL
+  const P3 image = make_image(u);
+  return {approx_of(image.x), approx_of(image.y), approx_of(image.z)};
+#else
+  const std::uint32_t id = used[u];
+  ImageBounds b;
+  Interval* out[3] = {&b.x, &b.y, &b.z};
+  const Vec3& p = scene->vertices[id];
+  for (int r = 0; r < 3; ++r) {
+    double d;
+    *out[r] = view->perspective                    ? perspective_interval(*exact, id, r)
+              : exact_in_doubles(view->m[r], p, d) ? scaled_interval(d, k)
+                                                   : projected_interval(*exact, id, r, true);
+  }
+  // (An unbounded interval: the point made exact at once, as steady_point
+  // does, which narrows the coordinates' intervals. The image's own, then.)
+  if (!steady_detail::bounded(b.x) || !steady_detail::bounded(b.y)) {
+    const P3 image = make_image(u);
+    b = {approx_of(image.x), approx_of(image.y), approx_of(image.z)};
+  }
+  return b;
+#endif
+}
+
+bool CurveMaker::same_image(std::uint32_t a, std::uint32_t b) const {
+  if (!bounds) return equal_points(image(a).xy(), image(b).xy());
+  // (As equal_points: apart intervals tell, uncounted; else the two points,
+  // made for the question, compared as the images would be.)
+  const ImageBounds &p = bounds[local[a]], &q = bounds[local[b]];
+  auto apart = [](const Interval& i, const Interval& j) { return i.sup() < j.inf() || j.sup() < i.inf(); };
+  if (apart(p.x, q.x) || apart(p.y, q.y)) return false;
+  return equal_points(make_image(local[a]).xy(), make_image(local[b]).xy());
+}
+
+namespace {
+// The images at `places` (any order, repeats allowed) that are not made yet,
+// made in parallel, each on one thread.
+void make_images_of(const CurveMaker& M, ImageTable& images, std::vector<std::uint32_t> places, int threads) {
+  std::sort(places.begin(), places.end());
+  places.erase(std::unique(places.begin(), places.end()), places.end());
+  std::erase_if(places, [&](std::uint32_t u) { return images.made(u); });
+  parallel_chunks(static_cast<int>(places.size()), 1024, threads, [&](int, Chunk r) {
+    for (int i = r.begin; i < r.end; ++i) {
+      const std::uint32_t u = places[static_cast<std::size_t>(i)];
+      images.make(u, M.make_image(u));
+    }
+  });
+}
+}  // namespace
 
 // Every facet edge the near plane cuts, its cut point (made in parallel).
 void CurveMaker::make_clips(int threads) {
@@ -760,10 +864,10 @@ void mark_height_fields(ScreenScene& ss, const std::vector<int>& label, Stats& s
 
 // Parallel to the screen: every vertex at one depth, known exactly from its
 // interval. Common in views along an axis.
-bool parallel_to_screen(const Facet& f) {
-  const Interval z0 = approx_of(f.v[0].z);
+bool parallel_to_screen(const ScreenScene& ss, const Facet& f) {
+  const Interval z0 = ss.z_of(f.v[0]);
   return z0.is_point() && std::all_of(f.v.begin(), f.v.end(), [&](const P3& p) {
-           const Interval z = approx_of(p.z);
+           const Interval z = ss.z_of(p);
            return z.inf() == z0.inf() && z.sup() == z0.sup();
          });
 }
@@ -862,37 +966,39 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   exact->reserve_facets(wf.facets.size());
   ss.exact = exact;
   M.exact = exact.get();
-  std::vector<char>& front = M.front;
-  front.assign(used.size(), 0);
-  std::vector<std::int8_t> zsign(used.size(), 1);   // sign of Z (perspective): the near plane is Z = 0
-  // Input vertices: exact values that no rational arithmetic is done for unless
-  // a predicate needs them (engine/lazy_leaves.h). In parallel, chunks of them.
+  // Which vertices are in front of the near plane (perspective: Z > 0 and W > 0,
+  // decided exactly on binary floats; an orthographic view has no near plane).
   const int nu = static_cast<int>(used.size());
-  auto project_vertex = [&](std::uint32_t u, P3& image) {
-    const Vec3& p = scene.vertices[used[u]];
-    if (!view.perspective) {
-      // Each coordinate is a double where it is one exactly, else a lazy leaf:
-      // its interval now, its rational only if ever needed.
-      front[u] = 1;
-      double d[3];
-      for (int r = 0; r < 3; ++r)
-        if (!exact_in_doubles(view.m[r], p, d[r])) d[r] = std::nan("");
-      auto coordinate = [&](int r) { return std::isnan(d[r]) ? projected_number(*exact, used[u], r, true) : scaled(d[r], k); };
-      image = P3{coordinate(0), coordinate(1), coordinate(2)};
-      return;
-    }
-    // Perspective: X/W, Y/W, Z/W as lazy leaves (the quotient's interval now),
-    // kept where Z > 0 and W > 0 (decided exactly on binary floats).
-    zsign[u] = static_cast<std::int8_t>(projected_sign(view.m[2], p));
-    front[u] = zsign[u] > 0 && projected_sign(view.m[3], p) > 0;
-    if (!front[u]) return;
-    image = P3{perspective_number(*exact, used[u], 0), perspective_number(*exact, used[u], 1),
-               perspective_number(*exact, used[u], 2)};
-  };
-  std::vector<P3>& sv = ss.images = parallel_make<P3>(nu, 1024, threads, [&](int, int u, P3& image) {
-    project_vertex(static_cast<std::uint32_t>(u), image);
-  });
-  M.sv = sv.data();
+  std::vector<char>& front = M.front;
+  front.assign(used.size(), 1);
+  std::vector<std::int8_t> zsign(used.size(), 1);   // sign of Z (perspective): the near plane is Z = 0
+  if (view.perspective)
+    parallel_chunks(nu, 4096, threads, [&](int, Chunk r) {
+      for (int u = r.begin; u < r.end; ++u) {
+        const Vec3& p = scene.vertices[used[static_cast<std::size_t>(u)]];
+        zsign[u] = static_cast<std::int8_t>(projected_sign(view.m[2], p));
+        front[u] = zsign[u] > 0 && projected_sign(view.m[3], p) > 0;
+      }
+    });
+  // The images: input vertices as exact values that no rational arithmetic is
+  // done for unless a predicate needs them (engine/lazy_leaves.h), made in
+  // parallel. A lines-only drawing that the near plane cuts nowhere leaves them
+  // for later (only their intervals now): it needs those near its drawn lines
+  // (make_images), mostly a few per cent.
+  const bool later = latent && std::all_of(front.begin(), front.end(), [](char f) { return f != 0; }) && can_defer_images;
+  ss.images = ImageTable(used.size());
+  if (later) {
+    ss.image_bounds = parallel_make<ImageBounds>(nu, 1024, threads, [&](int, int u, ImageBounds& b) {
+      b = M.bounds_of(static_cast<std::uint32_t>(u));
+    });
+    M.bounds = ss.image_bounds.data();
+  } else {
+    parallel_chunks(nu, 1024, threads, [&](int, Chunk r) {
+      for (int u = r.begin; u < r.end; ++u)
+        if (front[static_cast<std::size_t>(u)]) ss.images.make(static_cast<std::size_t>(u), M.make_image(static_cast<std::uint32_t>(u)));
+    });
+  }
+  M.sv = ss.images.data();
   auto in_front = [&](std::uint32_t id) { return M.in_front(id); };
   auto image = [&](std::uint32_t id) -> const P3& { return M.image(id); };
   auto clip_point = [&](std::uint32_t a, std::uint32_t b) { return M.clip_point(a, b); };
@@ -942,27 +1048,32 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
           Interval area2 = 0;
           for (std::size_t k = 0; k < nv; ++k) {
             const P3 &p = f.v[k], &q = f.v[(k + 1) % nv];
-            area2 += approx_of(p.x) * approx_of(q.y) - approx_of(q.x) * approx_of(p.y);
+            area2 += ss.x_of(p) * ss.y_of(q) - ss.x_of(q) * ss.y_of(p);
           }
           return area2;
         },
         [&]() -> mpq_class {
           if (!view.perspective) return world_area_sign(view, scene, f);
+          // (Corners whose images are left for later: made for the question.)
+          std::vector<P3> made;
+          if (later)
+            for (const P3& p : f.v) made.push_back(M.make_image(static_cast<std::uint32_t>(&p - ss.images.data())));
+          auto corner = [&](std::size_t k) -> const P3& { return later ? made[k] : f.v[k]; };
           mpq_class area2 = 0;
           for (std::size_t k = 0; k < nv; ++k) {
-            const P3 &p = f.v[k], &q = f.v[(k + 1) % nv];
+            const P3 &p = corner(k), &q = corner((k + 1) % nv);
             area2 += to_mpq(p.x) * to_mpq(q.y) - to_mpq(q.x) * to_mpq(p.y);
           }
           return area2;
         });
     f.facing = s > 0 ? Facing::Front : s < 0 ? Facing::Back : Facing::EdgeOn;
     if (f.facing == Facing::EdgeOn) { ++edge_on; return; }
-    f.box = box_of(f.v[0]);
+    f.box = box_at(ss, f.v[0]);
     f.zlo = HUGE_VAL;
     f.zhi = -HUGE_VAL;
     for (const auto& p : f.v) {
-      f.box += box_of(p);
-      const Interval z = approx_of(p.z);
+      f.box += box_at(ss, p);
+      const Interval z = ss.z_of(p);
       f.zlo = std::min(f.zlo, z.inf());
       f.zhi = std::max(f.zhi, z.sup());
     }
@@ -970,7 +1081,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     // Its plane's spanning corners (the crease test reads them too), and its
     // depth plane, unless a lines-only drawing makes it later for the facets
     // its cells list (make_depth_planes).
-    const bool parallel = parallel_to_screen(f);
+    const bool parallel = parallel_to_screen(ss, f);
     if (!parallel) exact->spanning[fi] = spanning_ids(scene, w);
     if (!latent) make_depth_plane(f, *exact, static_cast<std::uint32_t>(fi), parallel);
   };
@@ -1004,6 +1115,25 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   // only their boxes are kept. (One Curve per chunk is made into again and
   // again: make() sets every field.)
   const int np = static_cast<int>(pieces.size()), size = 1024, chunks = chunk_count(np, size);
+  // A lines-only drawing judges every piece first (most are left latent), then
+  // makes the images of the drawn ones' ends, where images are left for later.
+  using V = CurveMaker::Verdict;
+  std::vector<V> verdict;
+  if (latent) {
+    verdict.resize(pieces.size());
+    parallel_chunks(np, 4096, threads, [&](int, Chunk r) {
+      for (int i = r.begin; i < r.end; ++i) verdict[static_cast<std::size_t>(i)] = M.judge(pieces[static_cast<std::size_t>(i)]);
+    });
+    if (later) {
+      std::vector<std::uint32_t> ends;
+      for (std::size_t i = 0; i < pieces.size(); ++i)
+        if (verdict[i] == V::Drawn) {
+          ends.push_back(M.local[pieces[i].a]);
+          ends.push_back(M.local[pieces[i].b]);
+        }
+      make_images_of(M, ss.images, std::move(ends), threads);
+    }
+  }
   if (!latent) ss.curves.reserve(pieces.size() + ss.facets.size() / 8);   // (+ near-plane cuts; + intersection lines later)
   std::vector<std::array<std::int64_t, 3>> dropped(static_cast<std::size_t>(chunks));
   std::vector<std::vector<int>> left(static_cast<std::size_t>(chunks));
@@ -1019,8 +1149,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     for (int i = r.begin; i < r.end; ++i) {
       const WorldPiece& wp = pieces[static_cast<std::size_t>(i)];
       if (latent) {   // (judged first: most pieces of a lines-only drawing are never made)
-        const CurveMaker::Verdict v = M.judge(wp);
-        using V = CurveMaker::Verdict;
+        const V v = verdict[static_cast<std::size_t>(i)];
         if (v == V::Latent) { latent_here.push_back(i); continue; }
         if (v != V::Drawn) { ++count[v == V::Hidden ? 0 : v == V::Clipped ? 1 : 2]; continue; }   // (as make() counts)
       }
@@ -1070,10 +1199,25 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   ss.planes_later = latent;
   if (latent) {
     stats.count("curves_latent", static_cast<std::int64_t>(ss.latent_piece.size()));
-    if (!ss.latent_piece.empty()) ss.maker = std::move(maker);   // (else freed now, as for a whole map)
+    // (Kept while it has latent curves or images to make; else freed now, as for a whole map.)
+    if (!ss.latent_piece.empty() || later) ss.maker = std::move(maker);
   }
   if (!cull) ss.maker = std::move(maker);   // (the hidden lines' pass reads the world facets)
   return ss;
+}
+
+void make_images(ScreenScene& ss, std::vector<std::uint32_t> places, int threads) {
+  if (ss.image_bounds.empty() || places.empty()) return;   // (every image made)
+  make_images_of(*ss.maker, ss.images, std::move(places), threads);
+}
+
+void make_corner_images(ScreenScene& ss, const std::vector<char>& which, int threads) {
+  if (ss.image_bounds.empty()) return;
+  std::vector<std::uint32_t> places;
+  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi)
+    if (which.empty() || which[fi])
+      for (const P3& p : ss.facets[fi].v) places.push_back(static_cast<std::uint32_t>(&p - ss.images.data()));
+  make_images(ss, std::move(places), threads);
 }
 
 const WorldFacets* world_facets_of(const ScreenScene& ss) { return ss.maker ? &ss.maker->wf : nullptr; }
@@ -1082,7 +1226,7 @@ void make_depth_planes(ScreenScene& ss, const std::vector<char>& which, int thre
     for (int fi = r.begin; fi < r.end; ++fi)
       if (which[static_cast<std::size_t>(fi)]) {
         Facet& f = ss.facets[fi];
-        make_depth_plane(f, *ss.exact, static_cast<std::uint32_t>(fi), parallel_to_screen(f));
+        make_depth_plane(f, *ss.exact, static_cast<std::uint32_t>(fi), parallel_to_screen(ss, f));
       }
   });
 }
@@ -1101,6 +1245,12 @@ void make_latent_curves(ScreenScene& ss, const std::vector<char>& wanted, int th
   std::vector<int> pick;
   for (std::size_t i = 0; i < wanted.size(); ++i)
     if (wanted[i]) pick.push_back(ss.latent_piece[i]);
+  std::vector<std::uint32_t> ends;   // (their images, where left for later)
+  if (!ss.image_bounds.empty())
+    for (int i : pick)
+      for (std::uint32_t id : {ss.maker->pieces[static_cast<std::size_t>(i)].a, ss.maker->pieces[static_cast<std::size_t>(i)].b})
+        ends.push_back(ss.maker->local[id]);
+  make_images(ss, std::move(ends), threads);
   const int n = static_cast<int>(pick.size()), size = 1024, chunks = chunk_count(n, size);
   const std::size_t first_ends = ss.ends.size();
   for (int k = 0; k < chunks; ++k) ss.ends.emplace_back();

@@ -9,11 +9,13 @@
 #include <array>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <vector>
 
 #include "arrangements/visibility_map.h"
 #include "engine/exact_kernel.h"
+#include "engine/image_table.h"
 #include "engine/small_vec.h"
 #include "engine/visibility.h"
 #include "engine/world_facets.h"
@@ -147,7 +149,10 @@ struct CurveMaker;   // (screen_scene.cpp: what making a curve from an edge piec
 
 struct ScreenScene {
   std::shared_ptr<const ExactSource> exact;   // (first: every lazy leaf refers to it)
-  std::vector<P3> images;        // the used vertices' images (before the facets: they refer to them)
+  ImageTable images;             // the used vertices' images (before the facets: they refer to them)
+  // Where the images are left for later (a lines-only drawing: make_images makes
+  // those it needs), each one's intervals, by place; else empty.
+  std::vector<ImageBounds> image_bounds;
   std::vector<Facet> facets;
   // Per facet: its component where that is known not to meet itself (a closed
   // one that closed_components took as such, having tested it: engine/culling.h;
@@ -169,6 +174,18 @@ struct ScreenScene {
   // boxes kept were 32 MB, most of them read once or twice.)
   std::vector<int> latent_piece;
   std::shared_ptr<const CurveMaker> maker;
+
+  // Image p's intervals as it had them when made (kept ones, where the images are
+  // left for later: the same values, read without the image), for a corner or a
+  // curve's end; any other point's own.
+  const ImageBounds* kept_bounds(const P3& p) const {
+    const std::less<const P3*> before;
+    if (image_bounds.empty() || before(&p, images.data()) || !before(&p, images.data() + images.size())) return nullptr;
+    return &image_bounds[static_cast<std::size_t>(&p - images.data())];
+  }
+  Interval x_of(const P3& p) const { const ImageBounds* b = kept_bounds(p); return b ? b->x : approx_of(p.x); }
+  Interval y_of(const P3& p) const { const ImageBounds* b = kept_bounds(p); return b ? b->y : approx_of(p.y); }
+  Interval z_of(const P3& p) const { const ImageBounds* b = kept_bounds(p); return b ? b->z : approx_of(p.z); }
 };
 
 // Facet fi's solid (ScreenScene::solid), or -1; and whether every occluder is in
@@ -237,6 +254,14 @@ CGAL::Bbox_2 latent_box(const ScreenScene& ss, std::size_t i);
 // Latent curve i's end points as the images they are (ScreenScene::images; its box is
 // theirs), or null for an end cut at the near plane.
 std::array<const P3*, 2> latent_ends(const ScreenScene& ss, std::size_t i);
+
+// Makes the images of the vertices at `places` (ScreenScene::images) that are not
+// made yet, where make_screen_scene left them for later (else none is left). In
+// parallel.
+void make_images(ScreenScene& ss, std::vector<std::uint32_t> places, int threads);
+// Makes the images of facet fi's corners for every facet `which` marks (every
+// facet where `which` is empty).
+void make_corner_images(ScreenScene& ss, const std::vector<char>& which, int threads);
 
 // Makes the latent curves whose flag in `wanted` is set, appended to ss.curves in
 // latent order (as make_screen_scene would have made them); no curve is latent

@@ -265,10 +265,11 @@ TEST(HiddenLines, CheckerRefusesEachMutation) {
 // whole map's, on every thread count: in views where hills hide valleys, along a
 // grazing direction, and from close by in perspective (near faces cover many
 // cells and block them), at two grid sizes.
-TEST(LinesOnly, OneSurfaceIsLookedAtOnlyNearItsDrawnLines) {
+namespace {
+// A height field over the unit square, n x n cells of two triangles.
+vismap::Scene hills(int n) {
   vismap::Scene scene;
   scene.file = "hills";
-  const int n = 40;
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
       const double x = static_cast<double>(i) / n, y = static_cast<double>(j) / n;
@@ -280,6 +281,12 @@ TEST(LinesOnly, OneSurfaceIsLookedAtOnlyNearItsDrawnLines) {
       scene.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
       scene.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
     }
+  return scene;
+}
+}  // namespace
+
+TEST(LinesOnly, OneSurfaceIsLookedAtOnlyNearItsDrawnLines) {
+  const vismap::Scene scene = hills(40);
   const std::vector<vismap::Camera> cameras = {ortho({-1, -2, -3}), ortho({-1, -0.3, -0.18}),
                                                persp({1.8, -1.2, 0.9}, {0.5, 0.5, 0}, 35),
                                                persp({0.45, 0.2, 0.3}, {0.5, 0.6, 0}, 70)};
@@ -301,6 +308,56 @@ TEST(LinesOnly, OneSurfaceIsLookedAtOnlyNearItsDrawnLines) {
       lines.threads = 3;
       EXPECT_EQ(segments_of(map_json(scene, view, lines)), drawn) << what << ": three threads differ from one";
     }
+}
+
+// A lines-only drawing's screen scene leaves the vertex images for later where
+// the near plane cuts nothing, projecting, culling and boxing the faces on the
+// intervals it keeps for them: those must be the very intervals each image has
+// once made (else boxes, cells and filters would differ from the whole map's).
+// Oblique, along an axis (coordinates exact in doubles), in perspective from
+// outside, at a scale that leaves the moderate range; and where the near plane
+// cuts, every image is made at once.
+TEST(LinesOnly, ImagesLeftForLaterKeepTheIntervalsTheyGet) {
+  vismap::Scene scene = hills(40);
+  vismap::Scene huge = scene;
+  for (vismap::Vec3& v : huge.vertices) v = {v.x * 0x1p600, v.y * 0x1p600, v.z * 0x1p600};
+  struct Case {
+    const vismap::Scene* scene;
+    vismap::Camera camera;
+    bool later;
+  };
+  const std::vector<Case> cases = {{&scene, ortho({-1, -2, -3}), true},
+                                   {&scene, ortho({0, 0, -1}), true},
+                                   {&scene, persp({1.8, -1.2, 0.9}, {0.5, 0.5, 0}, 35), true},
+                                   {&huge, ortho({-1, -2, -3}), true},
+                                   {&scene, persp({0.5, 0.5, 0.05}, {0.9, 0.9, 0}, 90), false}};
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const vismap::View view = vismap::make_view(cases[k].camera, *cases[k].scene);
+    vismap::Options opt;
+    opt.threads = 2;
+    vismap::Stats stats;
+    auto ss = vismap::engine::make_screen_scene(*cases[k].scene, view, opt, stats, /*latent=*/true);
+    const std::size_t n = ss.images.size();
+    ASSERT_EQ(!ss.image_bounds.empty(), cases[k].later) << "case " << k;
+    if (!cases[k].later) continue;
+    const std::vector<vismap::engine::ImageBounds> kept = ss.image_bounds;
+    std::size_t made = 0;
+    for (std::size_t u = 0; u < n; ++u) made += ss.images.made(u);
+    EXPECT_LT(made, n / 2) << "case " << k << ": most images are left for later (" << made << " of " << n << " made)";
+    std::vector<std::uint32_t> all(n);
+    for (std::size_t u = 0; u < n; ++u) all[u] = static_cast<std::uint32_t>(u);
+    vismap::engine::make_images(ss, all, 2);
+    auto same = [](const vismap::engine::Interval& a, const vismap::engine::Interval& b) {
+      return a.inf() == b.inf() && a.sup() == b.sup();
+    };
+    for (std::size_t u = 0; u < n; ++u) {
+      ASSERT_TRUE(ss.images.made(u)) << "case " << k << ", image " << u;
+      const vismap::engine::P3& p = ss.images[u];
+      EXPECT_TRUE(same(vismap::engine::approx_of(p.x), kept[u].x) && same(vismap::engine::approx_of(p.y), kept[u].y) &&
+                  same(vismap::engine::approx_of(p.z), kept[u].z))
+          << "case " << k << ", image " << u;
+    }
+  }
 }
 
 // ---- the grid is scaffolding: any c gives the same map ------------------------------
