@@ -119,11 +119,13 @@ FT scaled(double x, int k) {
   times_pow2(q, k);
   return from_mpq(q);
 }
+#ifndef VISMAP_FLOAT_KERNEL
 // The interval of scaled(x, k), without making the number where it is a double.
 Interval scaled_interval(double x, int k) {
   double y;
   return scales_exactly(x, k, y) ? Interval(y) : approx_of(scaled(x, k));
 }
+#endif
 
 CGAL::Bbox_2 box_of(const P3& p) {
   auto ix = CGAL::to_interval(p.x), iy = CGAL::to_interval(p.y);
