@@ -666,14 +666,16 @@ bool CurveMaker::same_image(std::uint32_t a, std::uint32_t b) const {
 
 namespace {
 // The images at `places` (any order, repeats allowed) that are not made yet,
-// made in parallel, each on one thread.
-void make_images_of(const CurveMaker& M, ImageTable& images, std::vector<std::uint32_t> places, int threads) {
-  std::sort(places.begin(), places.end());
-  places.erase(std::unique(places.begin(), places.end()), places.end());
-  std::erase_if(places, [&](std::uint32_t u) { return images.made(u); });
-  parallel_chunks(static_cast<int>(places.size()), 1024, threads, [&](int, Chunk r) {
+// made in parallel, each on one thread, in the order of their places.
+void make_images_of(const CurveMaker& M, ImageTable& images, const std::vector<std::uint32_t>& places, int threads) {
+  std::vector<char> wanted(images.size(), 0);
+  for (const std::uint32_t u : places) wanted[u] = !images.made(u);
+  std::vector<std::uint32_t> make;
+  for (std::size_t u = 0; u < wanted.size(); ++u)
+    if (wanted[u]) make.push_back(static_cast<std::uint32_t>(u));
+  parallel_chunks(static_cast<int>(make.size()), 1024, threads, [&](int, Chunk r) {
     for (int i = r.begin; i < r.end; ++i) {
-      const std::uint32_t u = places[static_cast<std::size_t>(i)];
+      const std::uint32_t u = make[static_cast<std::size_t>(i)];
       images.make(u, M.make_image(u));
     }
   });
@@ -1133,7 +1135,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
           ends.push_back(M.local[pieces[i].a]);
           ends.push_back(M.local[pieces[i].b]);
         }
-      make_images_of(M, ss.images, std::move(ends), threads);
+      make_images_of(M, ss.images, ends, threads);
     }
   }
   if (!latent) ss.curves.reserve(pieces.size() + ss.facets.size() / 8);   // (+ near-plane cuts; + intersection lines later)
@@ -1208,18 +1210,23 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   return ss;
 }
 
-void make_images(ScreenScene& ss, std::vector<std::uint32_t> places, int threads) {
+void make_images(ScreenScene& ss, const std::vector<std::uint32_t>& places, int threads) {
   if (ss.image_bounds.empty() || places.empty()) return;   // (every image made)
-  make_images_of(*ss.maker, ss.images, std::move(places), threads);
+  make_images_of(*ss.maker, ss.images, places, threads);
 }
 
 void make_corner_images(ScreenScene& ss, const std::vector<char>& which, int threads) {
   if (ss.image_bounds.empty()) return;
   std::vector<std::uint32_t> places;
-  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi)
-    if (which.empty() || which[fi])
-      for (const P3& p : ss.facets[fi].v) places.push_back(static_cast<std::uint32_t>(&p - ss.images.data()));
-  make_images(ss, std::move(places), threads);
+  if (which.empty()) {   // (every facet: every image, a vertex being some facet's corner)
+    places.resize(ss.images.size());
+    for (std::size_t u = 0; u < places.size(); ++u) places[u] = static_cast<std::uint32_t>(u);
+  } else {
+    for (std::size_t fi = 0; fi < ss.facets.size(); ++fi)
+      if (which[fi])
+        for (const P3& p : ss.facets[fi].v) places.push_back(static_cast<std::uint32_t>(&p - ss.images.data()));
+  }
+  make_images(ss, places, threads);
 }
 
 const WorldFacets* world_facets_of(const ScreenScene& ss) { return ss.maker ? &ss.maker->wf : nullptr; }
@@ -1252,7 +1259,7 @@ void make_latent_curves(ScreenScene& ss, const std::vector<char>& wanted, int th
     for (int i : pick)
       for (std::uint32_t id : {ss.maker->pieces[static_cast<std::size_t>(i)].a, ss.maker->pieces[static_cast<std::size_t>(i)].b})
         ends.push_back(ss.maker->local[id]);
-  make_images(ss, std::move(ends), threads);
+  make_images(ss, ends, threads);
   const int n = static_cast<int>(pick.size()), size = 1024, chunks = chunk_count(n, size);
   const std::size_t first_ends = ss.ends.size();
   for (int k = 0; k < chunks; ++k) ss.ends.emplace_back();

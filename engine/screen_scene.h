@@ -258,7 +258,7 @@ std::array<const P3*, 2> latent_ends(const ScreenScene& ss, std::size_t i);
 // Makes the images of the vertices at `places` (ScreenScene::images) that are not
 // made yet, where make_screen_scene left them for later (else none is left). In
 // parallel.
-void make_images(ScreenScene& ss, std::vector<std::uint32_t> places, int threads);
+void make_images(ScreenScene& ss, const std::vector<std::uint32_t>& places, int threads);
 // Makes the images of facet fi's corners for every facet `which` marks (every
 // facet where `which` is empty).
 void make_corner_images(ScreenScene& ss, const std::vector<char>& which, int threads);
