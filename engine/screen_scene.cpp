@@ -131,11 +131,13 @@ CGAL::Bbox_2 box_of(const P3& p) {
   auto ix = CGAL::to_interval(p.x), iy = CGAL::to_interval(p.y);
   return CGAL::Bbox_2(ix.first, iy.first, ix.second, iy.second);
 }
-// The same for a corner or curve end of ss, from its kept intervals where its
-// image is left for later.
+// The box of an image left for later, from its kept intervals (as box_of it).
+CGAL::Bbox_2 box_of(const ImageBounds& b) { return CGAL::Bbox_2(b.x.inf(), b.y.inf(), b.x.sup(), b.y.sup()); }
+// The box of a corner or curve end of ss: its kept intervals' where its image is
+// left for later.
 CGAL::Bbox_2 box_at(const ScreenScene& ss, const P3& p) {
   const ImageBounds* b = ss.kept_bounds(p);
-  return b ? CGAL::Bbox_2(b->x.inf(), b->y.inf(), b->x.sup(), b->y.sup()) : box_of(p);
+  return b ? box_of(*b) : box_of(p);
 }
 
 // World point on segment p->q where the near plane (Z = 0) cuts it.
@@ -431,9 +433,7 @@ struct CurveMaker {
   ImageBounds bounds_of(std::uint32_t u) const;
   // The box of vertex id's image (its kept intervals where it is left for later).
   CGAL::Bbox_2 image_box(std::uint32_t id) const {
-    if (!bounds) return box_of(image(id));
-    const ImageBounds& b = bounds[local[id]];
-    return CGAL::Bbox_2(b.x.inf(), b.y.inf(), b.x.sup(), b.y.sup());
+    return bounds ? box_of(bounds[local[id]]) : box_of(image(id));
   }
   // Whether vertices a and b (in front) have one image on the screen, exactly.
   bool same_image(std::uint32_t a, std::uint32_t b) const;
