@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdint>
 #include <iterator>
 #include <optional>
@@ -1429,7 +1430,7 @@ struct RowCuts {
   std::vector<std::pair<int, P2>> at;          // (curve, cut point)
   std::vector<std::pair<int, int>> overlaps;   // collinear curves sharing more than a point
   std::vector<int> met;                        // (lines only) curves found to meet a drawn one
-  std::int64_t pairs = 0, crossings = 0;
+  std::int64_t pairs = 0, crossings = 0, uncut = 0;
 };
 
 struct Cutter {
@@ -1450,8 +1451,10 @@ struct Cutter {
   }
 
   // Cuts C and D where they cross or touch; true where they may meet (closed
-  // segments), false where they surely do not.
-  bool intersect(int ci, int di) {
+  // segments), false where they surely do not. Curves `apart` (apart()) are cut
+  // only where they overlap or one ends on the other: a proper crossing is no
+  // cut (and true is then all that is known).
+  bool intersect(int ci, int di, bool apart) {
     const Curve &C = ss.curves[ci], &D = ss.curves[di];
     if (!CGAL::do_overlap(C.box, D.box)) return false;
     ++row.pairs;
@@ -1477,6 +1480,10 @@ struct Cutter {
     auto o1 = CGAL::orientation(cs, ct, ds), o2 = CGAL::orientation(cs, ct, dt);
     if (o1 != CGAL::COLLINEAR && o1 == o2) return false;
     if (o1 == CGAL::COLLINEAR && o2 == CGAL::COLLINEAR) { overlap(ci, di); return true; }
+    if (apart && o1 != CGAL::COLLINEAR && o2 != CGAL::COLLINEAR) {   // (a proper crossing or none)
+      ++row.uncut;
+      return true;
+    }
     auto o3 = CGAL::orientation(ds, dt, cs), o4 = CGAL::orientation(ds, dt, ct);
     if (o3 != CGAL::COLLINEAR && o3 == o4) return false;
     if (o1 * o2 < 0 && o3 * o4 < 0) {   // proper crossing
@@ -1534,15 +1541,63 @@ struct Cutter {
 
 }  // namespace
 
+namespace {
+
+// Each curve's depth range and its two facets' faces where it is covered
+// (Curve::covered), else NaNs (never apart from anything).
+struct DepthSpan {
+  double lo, hi;
+  std::array<int, 2> face;
+};
+std::vector<DepthSpan> covered_spans(const ScreenScene& ss, int threads) {
+  const int n = static_cast<int>(ss.curves.size());
+  std::vector<DepthSpan> span(static_cast<std::size_t>(n));
+  parallel_chunks(n, 16384, threads, [&](int, Chunk r) {
+    for (int i = r.begin; i < r.end; ++i) {
+      const Curve& c = ss.curves[static_cast<std::size_t>(i)];
+      DepthSpan& d = span[static_cast<std::size_t>(i)];
+      if (!c.covered) {
+        d.lo = d.hi = std::numeric_limits<double>::quiet_NaN();
+        continue;
+      }
+      const Interval zs = ss.z_of(*c.s), zt = ss.z_of(*c.t);
+      d.lo = std::min(zs.inf(), zt.inf());
+      d.hi = std::max(zs.sup(), zt.sup());
+      for (std::size_t k = 0; k < 2; ++k) d.face[k] = ss.facets[static_cast<std::size_t>(c.sharers[k])].face;
+    }
+  });
+  return span;
+}
+
+// Two covered curves, one wholly nearer than the other (their depth ranges
+// apart: on a straight curve depth is affine, between its ends' depths), with
+// no face in common. Where they cross properly on screen, the nearer one's two
+// facets hide the farther one on both sides (a face hides no edge of its own:
+// hence no common face, as where a fan folds over its own edge), so its
+// visibility does not change there; and the farther one, on no outline,
+// changes nothing of the nearer one's: no map vertex, no change of visibility
+// or of the faces beside them. Their crossing needs no point. (But where they
+// overlap, a line right behind another on screen lies in no facet's interior
+// and is visible; and where one ends on the other, Cutter cuts as ever.)
+bool apart(const DepthSpan& a, const DepthSpan& b) {
+  if (!(a.hi < b.lo || b.hi < a.lo)) return false;
+  for (int f : a.face)
+    if (f == b.face[0] || f == b.face[1]) return false;
+  return true;
+}
+
+}  // namespace
+
 // Step 8: in each cell, every pair of curves; an intersection counts in the cell
-// holding it (half-open cells), so each is found once.
+// holding it (half-open cells), so each is found once; the crossings of curves
+// apart() are not cut.
 Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats& stats) {
   const std::size_t n = ss.curves.size();
   Cuts cuts;
   cuts.list_of.assign(n, Cuts::kNone);
   cuts.needed.assign(n, 1);
   std::vector<std::pair<int, int>> overlaps;
-  std::int64_t pairs = 0, crossings = 0;
+  std::int64_t pairs = 0, crossings = 0, uncut = 0;
   // visit(cutter, cell) for every cell, the rows in parallel; what they found is
   // joined in row order, as one pass over the cells in order would have found it.
   auto each_cell = [&](auto&& visit) {
@@ -1562,6 +1617,7 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
       for (int c : row.met) cuts.needed[static_cast<std::size_t>(c)] = 1;
       pairs += row.pairs;
       crossings += row.crossings;
+      uncut += row.uncut;
       row = RowCuts();
     }
   };
@@ -1573,10 +1629,12 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
     if (cell.blocker >= 0) cutter.pierce(ci, cell.blocker);
   };
   if (regions) {
+    const std::vector<DepthSpan> span = covered_spans(ss, threads);
+    auto skip = [&](int a, int b) { return apart(span[static_cast<std::size_t>(a)], span[static_cast<std::size_t>(b)]); };
     each_cell([&](Cutter& cutter, const Cell& cell) {
       const auto& cs = cell.curves;
       for (std::size_t i = 0; i < cs.size(); ++i)
-        for (std::size_t j = i + 1; j < cs.size(); ++j) cutter.intersect(cs[i], cs[j]);
+        for (std::size_t j = i + 1; j < cs.size(); ++j) cutter.intersect(cs[i], cs[j], skip(cs[i], cs[j]));
       for (int ci : cs) pierce(cutter, cell, ci);
     });
   } else {
@@ -1593,7 +1651,7 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
       const auto& cs = cell.curves;
       for (std::size_t i = 0; i < cs.size(); ++i)
         for (std::size_t j = i + 1; j < cs.size(); ++j)
-          if ((drawn[cs[i]] || drawn[cs[j]]) && cutter.intersect(cs[i], cs[j])) {
+          if ((drawn[cs[i]] || drawn[cs[j]]) && cutter.intersect(cs[i], cs[j], false)) {
             cutter.row.met.push_back(cs[i]);
             cutter.row.met.push_back(cs[j]);
           }
@@ -1603,7 +1661,7 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
       const auto& cs = cell.curves;
       for (std::size_t i = 0; i < cs.size(); ++i)
         for (std::size_t j = i + 1; j < cs.size(); ++j)
-          if (!drawn[cs[i]] && !drawn[cs[j]] && (cuts.needed[cs[i]] || cuts.needed[cs[j]])) cutter.intersect(cs[i], cs[j]);
+          if (!drawn[cs[i]] && !drawn[cs[j]] && (cuts.needed[cs[i]] || cuts.needed[cs[j]])) cutter.intersect(cs[i], cs[j], false);
       for (int ci : cs)
         if (cuts.needed[ci]) pierce(cutter, cell, ci);
     });
@@ -1621,6 +1679,7 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
   });
   stats.count("edge_pairs_tested", pairs);
   stats.count("intersections", crossings);
+  stats.count("crossings_left_uncut", uncut);   // (pairs apart(): a crossing, if any, cuts nothing)
   stats.count("overlapping_curve_pairs", static_cast<std::int64_t>(overlaps.size()));
   return cuts;
 }

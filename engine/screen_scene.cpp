@@ -491,6 +491,7 @@ struct CurveMaker {
   EdgeKind kind_of(const SmallInts& faces, const std::array<int, 2>& facet) const;
   Spanning spanning(int facet) const;
   bool drawn_of(const SmallInts& faces, EdgeKind kind) const { return !faces.empty() && (kind != EdgeKind::Smooth || smooth); }
+  bool covered(const WorldPiece& wp) const;
 };
 
 // Whether some facet sharing the piece hides or labels: else every one is a
@@ -502,6 +503,19 @@ bool CurveMaker::any_occluder(const WorldPiece& wp) const {
     if (f.occluder || (f.projected && f.facing == Facing::EdgeOn)) return true;
   }
   return false;
+}
+
+// Whether an occluder lies on each side of the piece on screen: two sharers,
+// both occluders, on opposite sides. Each is convex and lies left of its edges
+// where it turns counter-clockwise on screen (Front), right where clockwise
+// (Back); `forward` says which way it runs along the piece. Combinatorial: no
+// predicate.
+bool CurveMaker::covered(const WorldPiece& wp) const {
+  if (wp.sharers.size() != 2 || wp.sharers[0].facet == wp.sharers[1].facet) return false;
+  const Sharer &a = wp.sharers[0], &b = wp.sharers[1];
+  const Look &fa = look[static_cast<std::size_t>(a.facet)], &fb = look[static_cast<std::size_t>(b.facet)];
+  if (!fa.occluder || !fb.occluder) return false;
+  return (a.forward != b.forward) == (fa.facing == fb.facing);
 }
 
 // The faces whose boundary the piece is (a sharer's edge that is not a
@@ -577,6 +591,7 @@ bool CurveMaker::make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3
   faces_of(wp, c.faces, facet);
   c.kind = kind_of(c.faces, facet);
   c.drawn = drawn_of(c.faces, c.kind);
+  c.covered = covered(wp);
   // Its place in the (depth, face index) order: the lowest face it belongs to.
   c.order_face = wf.facets[static_cast<std::size_t>(c.sharers[0])].face;
   for (int s : c.sharers) c.order_face = std::min(c.order_face, wf.facets[static_cast<std::size_t>(s)].face);

@@ -141,6 +141,10 @@ struct Curve {
   SmallInts faces;               // faces written in the JSON, ascending; empty = never drawn
   EdgeKind kind = EdgeKind::Border;
   bool drawn = false;
+  // A facet that hides on each side of it on screen (two sharers, both
+  // occluders, on opposite sides): on no outline, so whatever passes behind it
+  // is hidden on both sides there (cut_curves skips such crossings).
+  bool covered = false;
   int order_face = 0;            // lowest face index: ties in (depth, face index)
   CGAL::Bbox_2 box;
 };

@@ -526,6 +526,60 @@ TEST(EmbeddedStars, NoPairSkippedCrosses) {
   EXPECT_LT(stars, vertices * 3 / 4);   // (folds and silhouettes leave many stars untold)
 }
 
+// ---- crossings of covered lines apart in depth are not cut -----------------------
+
+// Where two lines each with a hiding facet on both sides (Curve::covered) cross
+// on screen, one wholly nearer than the other and no face shared, the engine
+// cuts neither (cut_curves: stat crossings_left_uncut). The map must not
+// change: Newell's engine, which cuts every crossing, writes the same, and the
+// checker accepts it. The cases where skipping would be wrong are here: hills
+// hiding valleys (the skipped crossings), a fan that folds over its own edge
+// behind another face (a face hides no edge of its own), a sphere right
+// behind another on screen (a line right behind a covered one is visible: an
+// overlap, never skipped), boxes that pierce each other.
+TEST(CoveredCrossings, LeftUncutWithoutChangingTheMap) {
+  struct Shot {
+    std::string what;
+    vismap::Scene scene;
+    vismap::Camera camera;
+  };
+  std::vector<Shot> shots;
+  const vismap::Scene h = hills(16);
+  shots.push_back({"hills, perspective", h, persp({1.8, -1.2, 0.9}, {0.5, 0.5, 0}, 35)});
+  shots.push_back({"hills, grazing", h, ortho({-1, -0.3, -0.18})});
+  shots.push_back({"hills, close-up", h, persp({0.45, 0.2, 0.3}, {0.5, 0.6, 0}, 70)});
+  vismap::Scene spheres = vismap::gen::sphere(10, 7, 1.0, {0, 0, 0});
+  const vismap::Scene back = vismap::gen::sphere(10, 7, 1.0, {0, 0, -4});   // (the same x, y: the same screen)
+  const auto first = static_cast<std::uint32_t>(spheres.vertices.size());
+  spheres.vertices.insert(spheres.vertices.end(), back.vertices.begin(), back.vertices.end());
+  for (auto f : back.faces) {
+    for (auto& v : f) v += first;
+    spheres.faces.push_back(f);
+  }
+  shots.push_back({"sphere behind a sphere, along z", spheres, ortho({0, 0, -1})});
+  shots.push_back({"sphere behind a sphere, obliquely", spheres, ortho({-0.1, -0.2, -3})});
+  shots.push_back({"folded fans", vismap::read_scene((fs::path(VISMAP_DATA_DIR) / "stress_fold_818.off").string()),
+                   ortho({-0.25, -0.5, -1})});
+  shots.push_back({"piercing boxes", vismap::gen::interpenetrating_boxes(6, 3), ortho({-1, -2, -3})});
+  std::int64_t uncut = 0;
+  for (Shot& shot : shots) {
+    shot.scene.file = shot.what;
+    const vismap::View view = vismap::make_view(shot.camera, shot.scene);
+    vismap::Options opt;
+    opt.threads = 1;
+    const vismap::VisibilityMap m = vismap::visibility_franklin(shot.scene, view, opt);
+    uncut += m.stats.counted("crossings_left_uncut");
+    const std::string json = map_json(shot.scene, view, opt);
+    vismap::VisibilityMap n = vismap::visibility_newell(shot.scene, view, opt);
+    n.stats = {};
+    EXPECT_EQ(vismap::to_json(n), json) << shot.what << ": Newell's map differs";
+    vismap_check::Options check;
+    check.samples = 600;
+    expect_checked(shot.scene, json, check, shot.what);
+  }
+  EXPECT_GT(uncut, 1000) << "no crossing was left uncut";
+}
+
 // ---- crease angles at the threshold ------------------------------------------------
 
 // Whether the edge o-p shared by triangles (o, p, q) and (p, o, r) is a crease at
