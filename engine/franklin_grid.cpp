@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <cstdint>
+#include <deque>
 #include <iterator>
 #include <optional>
 #include <span>
@@ -1455,22 +1456,64 @@ struct Cutter {
   // only where they overlap or one ends on the other: a proper crossing is no
   // cut (and true is then all that is known).
   bool intersect(int ci, int di, bool apart) {
-    const Curve &C = ss.curves[ci], &D = ss.curves[di];
-    if (!CGAL::do_overlap(C.box, D.box)) return false;
+    if (!boxes_meet(ci, di)) return false;
+    return meet(ci, di, apart);
+  }
+  bool boxes_meet(int ci, int di) {
+    if (!CGAL::do_overlap(ss.curves[ci].box, ss.curves[di].box)) return false;
     ++row.pairs;
+    return true;
+  }
+
+  // A common end point of C and D known without a predicate: the same vertex,
+  // or one point (a near-plane cut, made once for all the curves through it).
+  // Where there is one, C = [p, a] and D = [p, b].
+  struct CommonEnd {
+    const P2 *p, *a, *b;
+  };
+  static std::optional<CommonEnd> common_end(const Curve& C, const Curve& D) {
     const P2 &cs = C.s->xy(), &ct = C.t->xy(), &ds = D.s->xy(), &dt = D.t->xy();   // (references: no handle copied)
-    // End points known to be the same need no predicate: the same vertex, or
-    // one point (a near-plane cut, made once for all the curves through it).
     auto same = [](long a, long b, const P2& p, const P2& q) { return a >= 0 ? a == b : b < 0 && same_rep(p, q); };
     const bool ss_ = same(C.vs, D.vs, cs, ds), st = same(C.vs, D.vt, cs, dt), ts = same(C.vt, D.vs, ct, ds),
                tt = same(C.vt, D.vt, ct, dt);
-    if (ss_ || st || ts || tt) {
+    if (!(ss_ || st || ts || tt)) return std::nullopt;
+    const bool ps = ss_ || st;
+    return CommonEnd{ps ? &cs : &ct, ps ? &ct : &cs, (ss_ || ts) ? &dt : &ds};
+  }
+
+  // Whether the intervals of the points tell that C and D (boxes meeting) need
+  // no cut, as meet() would find: not collinear at a common end, or apart from
+  // each other's lines, or crossing apart() (rounding upward: the caller's
+  // UpwardRounding; no CGAL predicate). Else meet() decides.
+  bool no_cut_on_intervals(int ci, int di, bool apart) {
+    const Curve &C = ss.curves[ci], &D = ss.curves[di];
+    auto side = [](const P2& u, const P2& v, const P2& w) {   // (0: not told)
+      ++filter_counts.calls;
+      const Interval o = (approx_x(v) - approx_x(u)) * (approx_y(w) - approx_y(u)) -
+                         (approx_y(v) - approx_y(u)) * (approx_x(w) - approx_x(u));
+      return o.inf() > 0 ? 1 : o.sup() < 0 ? -1 : 0;
+    };
+    if (const auto e = common_end(C, D)) return side(*e->p, *e->a, *e->b) != 0;
+    const P2 &cs = C.s->xy(), &ct = C.t->xy(), &ds = D.s->xy(), &dt = D.t->xy();
+    const int o1 = side(cs, ct, ds), o2 = side(cs, ct, dt);
+    if (o1 != 0 && o1 == o2) return true;
+    if (apart && o1 != 0 && o2 != 0) {
+      ++row.uncut;
+      return true;
+    }
+    const int o3 = side(ds, dt, cs), o4 = side(ds, dt, ct);
+    return o3 != 0 && o3 == o4;
+  }
+
+  // intersect() for C and D whose boxes meet.
+  bool meet(int ci, int di, bool apart) {
+    const Curve &C = ss.curves[ci], &D = ss.curves[di];
+    const P2 &cs = C.s->xy(), &ct = C.t->xy(), &ds = D.s->xy(), &dt = D.t->xy();   // (references: no handle copied)
+    if (const auto e = common_end(C, D)) {
       // C = [p, a], D = [p, b]: they meet only at p unless collinear and pointing the
       // same way; then the longer is cut where the shorter ends. Their depths agree
       // at p, so the depth order cannot change inside the common part.
-      const bool ps = ss_ || st;
-      const P2 &p = ps ? cs : ct, &a = ps ? ct : cs;
-      const P2& b = (ss_ || ts) ? dt : ds;
+      const P2 &p = *e->p, &a = *e->a, &b = *e->b;
       if (CGAL::orientation(p, a, b) != CGAL::COLLINEAR || !CGAL::is_positive((a - p) * (b - p))) return true;
       row.overlaps.emplace_back(ci, di);
       if (strictly_within(C, b)) cut(ci, b);
@@ -1633,8 +1676,16 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
     auto skip = [&](int a, int b) { return apart(span[static_cast<std::size_t>(a)], span[static_cast<std::size_t>(b)]); };
     each_cell([&](Cutter& cutter, const Cell& cell) {
       const auto& cs = cell.curves;
-      for (std::size_t i = 0; i < cs.size(); ++i)
-        for (std::size_t j = i + 1; j < cs.size(); ++j) cutter.intersect(cs[i], cs[j], skip(cs[i], cs[j]));
+      if (cs.size() >= 2) {   // (the pairs on intervals first: one rounding switch per cell)
+        UpwardRounding upward;
+        for (std::size_t i = 0; i < cs.size(); ++i)
+          for (std::size_t j = i + 1; j < cs.size(); ++j) {
+            const int a = cs[i], b = cs[j];
+            if (!cutter.boxes_meet(a, b) || cutter.no_cut_on_intervals(a, b, skip(a, b))) continue;
+            NearestRounding nearest;   // (CGAL's predicates and constructions round to nearest)
+            cutter.meet(a, b, skip(a, b));
+          }
+      }
       for (int ci : cs) pierce(cutter, cell, ci);
     });
   } else {
@@ -1700,9 +1751,16 @@ bool cover_at(const Facet& f, Probe& probe, Cover& out, int own) {
   for (std::size_t k = 0; k < n && (left || right); ++k) {
     const P3& p = f.v[k];
     const P3& q = f.v[(k + 1) % n];
-    int o = static_cast<int>(k) == own ? 0 : orientation(p, q, probe) * turn(f);
+    const bool held = static_cast<int>(k) == own;
+    int o = held ? 0 : orientation(p, q, probe) * turn(f);
     if (o > 0) continue;
     if (o < 0) return false;
+    // m on the line of an edge across the curve: a crossing left uncut
+    // (cut_curves) lies right at m, which then tells nothing of either side.
+    if (!held && edge_across(p, q, probe) != CGAL::ZERO) {
+      probe.on_crossing_line = true;
+      return false;
+    }
     // m on this edge's line: the facet lies on one side of it. Which side of the
     // curve that is follows from the edge's direction relative to the curve's.
     int s = edge_along(p, q, probe) * turn(f);
@@ -1739,6 +1797,9 @@ struct Classified {
   std::int64_t pieces = 0, visible = 0;
 };
 
+bool decide_piece(const Grid& g, const ScreenScene& ss, int ci, const P2& a, const P2& b, Probe& probe,
+                  std::vector<Cover>& covers, Classified& res);
+
 // Steps 9 and 11 for curve ci, cut at pts (sorted here).
 void classify_curve(const Grid& g, const ScreenScene& ss, int ci, std::vector<P2>& pts, std::vector<Cover>& covers,
                     Classified& res) {
@@ -1767,82 +1828,104 @@ void classify_curve(const Grid& g, const ScreenScene& ss, int ci, std::vector<P2
   pts.insert(pts.begin(), s);
   pts.push_back(t);
   Probe probe = probe_of(ss, cv);
+  std::deque<P2> nearer;   // (points a piece is decided at instead of its midpoint)
   UpwardRounding upward;   // the loop calls only our own filtered predicates
   for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
     ++res.pieces;
-    probe.at_midpoint(pts[k], pts[k + 1]);
-    const Cell& cell = g.at(cell_index_of(g.X, probe.ix, [&] { probe.need_exact(); return probe.ex; }),
-                      cell_index_of(g.Y, probe.iy, [&] { probe.need_exact(); return probe.ey; }));
-    covers.clear();
-    const CGAL::Bbox_2 mbox(probe.ix.inf(), probe.iy.inf(), probe.ix.sup(), probe.iy.sup());
-    // A facet of another face covering both sides of m strictly in front of
-    // the curve hides the piece, and no facet holding the curve (at the
-    // curve's depth) can then be nearest on either side: the piece is neither
-    // drawn nor a region boundary, and the rest of its cell need not be seen.
-    auto hides = [&](int fi, const Cover& c) {
-      return c.left && c.right && !std::binary_search(cv.faces.begin(), cv.faces.end(), ss.facets[fi].face) &&
-             depth_against_curve(ss.facets[fi], probe) == CGAL::NEGATIVE;
-    };
-    auto consider = [&](int fi) {   // true: fi hides the piece
-      if (!CGAL::do_overlap(mbox, ss.facets[fi].box)) return false;   // cheap: cannot cover m
-      int own = -1;
-      for (std::size_t j = 0; j < cv.sharers.size(); ++j)
-        if (cv.sharers[j] == fi) own = cv.sharer_edge[j];
-      Cover c;
-      if (!cover_at(ss.facets[fi], probe, c, own)) return false;
-      c.facet = fi;
-      covers.push_back(c);
-      return hides(fi, c);
-    };
-    bool hidden = false;
-    for (int fi : cell.facets)
-      if ((hidden = consider(fi))) break;
-    if (!hidden && cell.blocker >= 0) hidden = consider(cell.blocker);
-    if (hidden) continue;
-    // Nearest face on each side (step 11).
-    int bl = -1, br = -1;
-    for (std::size_t i = 0; i < covers.size(); ++i) {
-      const Facet& f = ss.facets[covers[i].facet];
-      if (covers[i].left && (bl < 0 || before(f, ss.facets[covers[bl].facet], probe, true))) bl = static_cast<int>(i);
-      if (covers[i].right && (br < 0 || before(f, ss.facets[covers[br].facet], probe, false))) br = static_cast<int>(i);
+    // The piece is decided at its midpoint, or where that lies on a line across
+    // it (a crossing left uncut: the piece is the same on both sides of it), at
+    // the midpoint of its first half, and so on (finitely many lines cross it).
+    const P2* end = &pts[k + 1];
+    for (;;) {
+      probe.at_midpoint(pts[k], *end);
+      probe.on_crossing_line = false;
+      if (decide_piece(g, ss, ci, pts[k], pts[k + 1], probe, covers, res)) break;
+      NearestRounding nearest;   // (a lazy construction: CGAL rounds to nearest)
+      end = &nearer.emplace_back(CGAL::midpoint(pts[k], *end));
     }
-    VisiblePiece vp;
-    vp.a = pts[k];
-    vp.b = pts[k + 1];
-    vp.curve = ci;
-    vp.left = bl < 0 ? -1 : ss.facets[covers[bl].facet].face;
-    vp.right = br < 0 ? -1 : ss.facets[covers[br].facet].face;
-    if (vp.left != vp.right) {
-      auto responsible = [&](int i) {
-        return i >= 0 && std::find(cv.sharers.begin(), cv.sharers.end(), covers[i].facet) != cv.sharers.end();
-      };
-      vp.boundary = cv.kind == EdgeKind::Intersection && cv.drawn ? (responsible(bl) && responsible(br))
-                                                                   : (responsible(bl) || responsible(br));
-    }
-    // 9c: visible unless a face not sharing the curve covers both sides of m and
-    // comes before it in (depth, face index). Edge pieces that are not drawn
-    // (smooth) too: where lines coincide, the first visible one decides.
-    if (!cv.faces.empty()) {
-      vp.visible = true;
-      for (std::size_t i = 0; i < covers.size() && vp.visible; ++i) {
-        const int face = ss.facets[covers[i].facet].face;
-        if (std::binary_search(cv.faces.begin(), cv.faces.end(), face)) continue;
-        auto c = depth_against_curve(ss.facets[covers[i].facet], probe);
-        if (!(c == CGAL::NEGATIVE || (c == CGAL::ZERO && face < cv.order_face))) continue;
-        bool both = covers[i].left && covers[i].right;
-        // Two facets of one (fanned) polygon covering the two sides hide it only
-        // where they meet at m: the same depth there. A facet of that polygon
-        // further back, a fold's other layer, does not continue this one.
-        for (std::size_t j = 0; j < covers.size() && !both; ++j)
-          if (j != i && ss.facets[covers[j].facet].face == face &&
-              (covers[i].left || covers[j].left) && (covers[i].right || covers[j].right))
-            both = depth_order(ss.facets[covers[i].facet], ss.facets[covers[j].facet], probe) == CGAL::ZERO;
-        if (both) vp.visible = false;
-      }
-    }
-    res.visible += vp.visible && cv.drawn;
-    if (vp.visible || vp.boundary) res.out.push_back(std::move(vp));
   }
+}
+
+// Steps 9c and 11 for the piece a-b of curve ci at the probe's point: false
+// where that point lies on a line across the piece (Probe::on_crossing_line),
+// which tells nothing; else true, the piece kept in `res` if it is visible or
+// bounds a region.
+bool decide_piece(const Grid& g, const ScreenScene& ss, int ci, const P2& a, const P2& b, Probe& probe,
+                  std::vector<Cover>& covers, Classified& res) {
+  const Curve& cv = ss.curves[ci];
+  const Cell& cell = g.at(cell_index_of(g.X, probe.ix, [&] { probe.need_exact(); return probe.ex; }),
+                    cell_index_of(g.Y, probe.iy, [&] { probe.need_exact(); return probe.ey; }));
+  covers.clear();
+  const CGAL::Bbox_2 mbox(probe.ix.inf(), probe.iy.inf(), probe.ix.sup(), probe.iy.sup());
+  // A facet of another face covering both sides of m strictly in front of
+  // the curve hides the piece, and no facet holding the curve (at the
+  // curve's depth) can then be nearest on either side: the piece is neither
+  // drawn nor a region boundary, and the rest of its cell need not be seen.
+  auto hides = [&](int fi, const Cover& c) {
+    return c.left && c.right && !std::binary_search(cv.faces.begin(), cv.faces.end(), ss.facets[fi].face) &&
+           depth_against_curve(ss.facets[fi], probe) == CGAL::NEGATIVE;
+  };
+  auto consider = [&](int fi) {   // true: fi hides the piece
+    if (!CGAL::do_overlap(mbox, ss.facets[fi].box)) return false;   // cheap: cannot cover m
+    int own = -1;
+    for (std::size_t j = 0; j < cv.sharers.size(); ++j)
+      if (cv.sharers[j] == fi) own = cv.sharer_edge[j];
+    Cover c;
+    if (!cover_at(ss.facets[fi], probe, c, own)) return false;
+    c.facet = fi;
+    covers.push_back(c);
+    return hides(fi, c);
+  };
+  bool hidden = false;
+  for (int fi : cell.facets)
+    if ((hidden = consider(fi)) || probe.on_crossing_line) break;
+  if (!hidden && !probe.on_crossing_line && cell.blocker >= 0) hidden = consider(cell.blocker);
+  if (probe.on_crossing_line) return false;
+  if (hidden) return true;
+  // Nearest face on each side (step 11).
+  int bl = -1, br = -1;
+  for (std::size_t i = 0; i < covers.size(); ++i) {
+    const Facet& f = ss.facets[covers[i].facet];
+    if (covers[i].left && (bl < 0 || before(f, ss.facets[covers[bl].facet], probe, true))) bl = static_cast<int>(i);
+    if (covers[i].right && (br < 0 || before(f, ss.facets[covers[br].facet], probe, false))) br = static_cast<int>(i);
+  }
+  VisiblePiece vp;
+  vp.a = a;
+  vp.b = b;
+  vp.curve = ci;
+  vp.left = bl < 0 ? -1 : ss.facets[covers[bl].facet].face;
+  vp.right = br < 0 ? -1 : ss.facets[covers[br].facet].face;
+  if (vp.left != vp.right) {
+    auto responsible = [&](int i) {
+      return i >= 0 && std::find(cv.sharers.begin(), cv.sharers.end(), covers[i].facet) != cv.sharers.end();
+    };
+    vp.boundary = cv.kind == EdgeKind::Intersection && cv.drawn ? (responsible(bl) && responsible(br))
+                                                                 : (responsible(bl) || responsible(br));
+  }
+  // 9c: visible unless a face not sharing the curve covers both sides of m and
+  // comes before it in (depth, face index). Edge pieces that are not drawn
+  // (smooth) too: where lines coincide, the first visible one decides.
+  if (!cv.faces.empty()) {
+    vp.visible = true;
+    for (std::size_t i = 0; i < covers.size() && vp.visible; ++i) {
+      const int face = ss.facets[covers[i].facet].face;
+      if (std::binary_search(cv.faces.begin(), cv.faces.end(), face)) continue;
+      auto c = depth_against_curve(ss.facets[covers[i].facet], probe);
+      if (!(c == CGAL::NEGATIVE || (c == CGAL::ZERO && face < cv.order_face))) continue;
+      bool both = covers[i].left && covers[i].right;
+      // Two facets of one (fanned) polygon covering the two sides hide it only
+      // where they meet at m: the same depth there. A facet of that polygon
+      // further back, a fold's other layer, does not continue this one.
+      for (std::size_t j = 0; j < covers.size() && !both; ++j)
+        if (j != i && ss.facets[covers[j].facet].face == face &&
+            (covers[i].left || covers[j].left) && (covers[i].right || covers[j].right))
+          both = depth_order(ss.facets[covers[i].facet], ss.facets[covers[j].facet], probe) == CGAL::ZERO;
+      if (both) vp.visible = false;
+    }
+  }
+  res.visible += vp.visible && cv.drawn;
+  if (vp.visible || vp.boundary) res.out.push_back(std::move(vp));
+  return true;
 }
 
 }  // namespace

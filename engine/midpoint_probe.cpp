@@ -98,6 +98,15 @@ CGAL::Sign edge_along(const P3& p, const P3& q, Probe& m) {
       });
 }
 
+CGAL::Sign edge_across(const P3& p, const P3& q, Probe& m) {
+  return filtered_sign(
+      [&] { return (approx_of(q.x) - approx_of(p.x)) * m.idy - (approx_of(q.y) - approx_of(p.y)) * m.idx; },
+      [&]() -> mpq_class {
+        m.need_direction();
+        return (to_mpq(q.x) - to_mpq(p.x)) * m.edy - (to_mpq(q.y) - to_mpq(p.y)) * m.edx;
+      });
+}
+
 CGAL::Sign depth_order(const Facet& f, const Facet& g, Probe& m) {
   return filtered_sign(
       [&] {

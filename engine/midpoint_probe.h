@@ -24,6 +24,9 @@ struct Probe {
   bool x_moves = true;        // t.x != s.x (else the curve is vertical)
   mpq_class ex, ey, edx, edy; // exact values, filled on first need
   bool have_exact = false, have_direction = false;
+  // Set where m turned out to lie on a facet's edge line across the curve
+  // (cover_at): m tells nothing of either side there.
+  bool on_crossing_line = false;
   void at_midpoint(const P2& pa, const P2& pb) {   // (rounding upward: the caller's UpwardRounding)
     a = &pa;
     b = &pb;
@@ -60,6 +63,8 @@ Probe probe_of(const ScreenScene& ss, const Curve& cv);
 CGAL::Sign orientation(const P3& p, const P3& q, Probe& m);
 // sign((q - p) . (t - s)): a facet edge's direction against the curve's.
 CGAL::Sign edge_along(const P3& p, const P3& q, Probe& m);
+// sign((q - p) x (t - s)): zero where a facet edge runs parallel to the curve.
+CGAL::Sign edge_across(const P3& p, const P3& q, Probe& m);
 // sign(depth of f - depth of g) at m.
 CGAL::Sign depth_order(const Facet& f, const Facet& g, Probe& m);
 // sign(slope of f - slope of g), the slope being the rate at which depth grows

@@ -533,10 +533,11 @@ TEST(EmbeddedStars, NoPairSkippedCrosses) {
 // cuts neither (cut_curves: stat crossings_left_uncut). The map must not
 // change: Newell's engine, which cuts every crossing, writes the same, and the
 // checker accepts it. The cases where skipping would be wrong are here: hills
-// hiding valleys (the skipped crossings), a fan that folds over its own edge
-// behind another face (a face hides no edge of its own), a sphere right
-// behind another on screen (a line right behind a covered one is visible: an
-// overlap, never skipped), boxes that pierce each other.
+// hiding valleys (the skipped crossings), a line whose piece has its midpoint
+// right under a nearer line (judged elsewhere on the piece), a fan that folds
+// over its own edge behind another face (a face hides no edge of its own), a
+// sphere right behind another on screen (a line right behind a covered one is
+// visible: an overlap, never skipped), boxes that pierce each other.
 TEST(CoveredCrossings, LeftUncutWithoutChangingTheMap) {
   struct Shot {
     std::string what;
@@ -558,6 +559,12 @@ TEST(CoveredCrossings, LeftUncutWithoutChangingTheMap) {
   }
   shots.push_back({"sphere behind a sphere, along z", spheres, ortho({0, 0, -1})});
   shots.push_back({"sphere behind a sphere, obliquely", spheres, ortho({-0.1, -0.2, -3})});
+  // Two rectangles of two triangles, one right above the other, split along
+  // the two diagonals: the lower diagonal's midpoint lies on the upper one.
+  vismap::Scene stacked;
+  stacked.vertices = {{0, 0, 1}, {2, 0, 1}, {2, 1, 1}, {0, 1, 1}, {0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}};
+  stacked.faces = {{0, 1, 2}, {0, 2, 3}, {4, 5, 7}, {5, 6, 7}};
+  shots.push_back({"a diagonal right under another's midpoint", stacked, ortho({0, 0, -1})});
   shots.push_back({"folded fans", vismap::read_scene((fs::path(VISMAP_DATA_DIR) / "stress_fold_818.off").string()),
                    ortho({-0.25, -0.5, -1})});
   shots.push_back({"piercing boxes", vismap::gen::interpenetrating_boxes(6, 3), ortho({-1, -2, -3})});
