@@ -1748,18 +1748,19 @@ struct Cover {
 bool cover_at(const Facet& f, Probe& probe, Cover& out, int own) {
   const std::size_t n = f.v.size();
   bool left = true, right = true;
-  for (std::size_t k = 0; k < n && (left || right); ++k) {
+  // m on the border of f, on an edge across the curve: a crossing left uncut
+  // (cut_curves) lies right at m, which then tells nothing of either side.
+  bool across = false;
+  for (std::size_t k = 0; k < n && (left || right || across); ++k) {
     const P3& p = f.v[k];
     const P3& q = f.v[(k + 1) % n];
     const bool held = static_cast<int>(k) == own;
     int o = held ? 0 : orientation(p, q, probe) * turn(f);
     if (o > 0) continue;
     if (o < 0) return false;
-    // m on the line of an edge across the curve: a crossing left uncut
-    // (cut_curves) lies right at m, which then tells nothing of either side.
     if (!held && edge_across(p, q, probe) != CGAL::ZERO) {
-      probe.on_crossing_line = true;
-      return false;
+      across = true;
+      continue;
     }
     // m on this edge's line: the facet lies on one side of it. Which side of the
     // curve that is follows from the edge's direction relative to the curve's.
@@ -1767,7 +1768,8 @@ bool cover_at(const Facet& f, Probe& probe, Cover& out, int own) {
     if (s <= 0) left = false;
     if (s >= 0) right = false;
   }
-  if (!left && !right) return false;
+  if (across) probe.on_crossing_line = true;
+  if (across || (!left && !right)) return false;
   out.facet = -1;
   out.left = left;
   out.right = right;
