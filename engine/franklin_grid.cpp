@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <cstdint>
 #include <deque>
 #include <iterator>
+#include <limits>
 #include <optional>
 #include <span>
 #include <type_traits>
@@ -1673,7 +1673,7 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
   };
   if (regions) {
     const std::vector<DepthSpan> span = covered_spans(ss, threads);
-    auto skip = [&](int a, int b) { return apart(span[static_cast<std::size_t>(a)], span[static_cast<std::size_t>(b)]); };
+    auto is_apart = [&](int a, int b) { return apart(span[static_cast<std::size_t>(a)], span[static_cast<std::size_t>(b)]); };
     each_cell([&](Cutter& cutter, const Cell& cell) {
       const auto& cs = cell.curves;
       if (cs.size() >= 2) {   // (the pairs on intervals first: one rounding switch per cell)
@@ -1681,9 +1681,11 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
         for (std::size_t i = 0; i < cs.size(); ++i)
           for (std::size_t j = i + 1; j < cs.size(); ++j) {
             const int a = cs[i], b = cs[j];
-            if (!cutter.boxes_meet(a, b) || cutter.no_cut_on_intervals(a, b, skip(a, b))) continue;
+            if (!cutter.boxes_meet(a, b)) continue;
+            const bool ab = is_apart(a, b);
+            if (cutter.no_cut_on_intervals(a, b, ab)) continue;
             NearestRounding nearest;   // (CGAL's predicates and constructions round to nearest)
-            cutter.meet(a, b, skip(a, b));
+            cutter.meet(a, b, ab);
           }
       }
       for (int ci : cs) pierce(cutter, cell, ci);
