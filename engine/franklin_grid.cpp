@@ -1600,7 +1600,7 @@ std::vector<DepthSpan> covered_spans(const ScreenScene& ss, int threads) {
       const Curve& c = ss.curves[static_cast<std::size_t>(i)];
       DepthSpan& d = span[static_cast<std::size_t>(i)];
       if (!c.covered) {
-        d.lo = d.hi = std::numeric_limits<double>::quiet_NaN();
+        d = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN(), {-1, -1}};
         continue;
       }
       const Interval zs = ss.z_of(*c.s), zt = ss.z_of(*c.t);
