@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <deque>
 #include <iterator>
 #include <limits>
 #include <optional>
@@ -1452,12 +1451,10 @@ struct Cutter {
   }
 
   // Cuts C and D where they cross or touch; true where they may meet (closed
-  // segments), false where they surely do not. Curves `apart` (apart()) are cut
-  // only where they overlap or one ends on the other: a proper crossing is no
-  // cut (and true is then all that is known).
-  bool intersect(int ci, int di, bool apart) {
+  // segments), false where they surely do not.
+  bool intersect(int ci, int di) {
     if (!boxes_meet(ci, di)) return false;
-    return meet(ci, di, apart);
+    return meet(ci, di, false);
   }
   bool boxes_meet(int ci, int di) {
     if (!CGAL::do_overlap(ss.curves[ci].box, ss.curves[di].box)) return false;
@@ -1505,7 +1502,9 @@ struct Cutter {
     return o3 != 0 && o3 == o4;
   }
 
-  // intersect() for C and D whose boxes meet.
+  // intersect() for C and D whose boxes meet. Curves `apart` (apart()) are cut
+  // only where they overlap or one ends on the other: a proper crossing is no
+  // cut (and true is then all that is known).
   bool meet(int ci, int di, bool apart) {
     const Curve &C = ss.curves[ci], &D = ss.curves[di];
     const P2 &cs = C.s->xy(), &ct = C.t->xy(), &ds = D.s->xy(), &dt = D.t->xy();   // (references: no handle copied)
@@ -1704,7 +1703,7 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
       const auto& cs = cell.curves;
       for (std::size_t i = 0; i < cs.size(); ++i)
         for (std::size_t j = i + 1; j < cs.size(); ++j)
-          if ((drawn[cs[i]] || drawn[cs[j]]) && cutter.intersect(cs[i], cs[j], false)) {
+          if ((drawn[cs[i]] || drawn[cs[j]]) && cutter.intersect(cs[i], cs[j])) {
             cutter.row.met.push_back(cs[i]);
             cutter.row.met.push_back(cs[j]);
           }
@@ -1714,7 +1713,7 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
       const auto& cs = cell.curves;
       for (std::size_t i = 0; i < cs.size(); ++i)
         for (std::size_t j = i + 1; j < cs.size(); ++j)
-          if (!drawn[cs[i]] && !drawn[cs[j]] && (cuts.needed[cs[i]] || cuts.needed[cs[j]])) cutter.intersect(cs[i], cs[j], false);
+          if (!drawn[cs[i]] && !drawn[cs[j]] && (cuts.needed[cs[i]] || cuts.needed[cs[j]])) cutter.intersect(cs[i], cs[j]);
       for (int ci : cs)
         if (cuts.needed[ci]) pierce(cutter, cell, ci);
     });
@@ -1832,7 +1831,7 @@ void classify_curve(const Grid& g, const ScreenScene& ss, int ci, std::vector<P2
   pts.insert(pts.begin(), s);
   pts.push_back(t);
   Probe probe = probe_of(ss, cv);
-  std::deque<P2> nearer;   // (points a piece is decided at instead of its midpoint)
+  std::optional<P2> nearer;   // (a point a piece is decided at instead of its midpoint: made only then)
   UpwardRounding upward;   // the loop calls only our own filtered predicates
   for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
     ++res.pieces;
@@ -1845,7 +1844,8 @@ void classify_curve(const Grid& g, const ScreenScene& ss, int ci, std::vector<P2
       probe.on_crossing_line = false;
       if (decide_piece(g, ss, ci, pts[k], pts[k + 1], probe, covers, res)) break;
       NearestRounding nearest;   // (a lazy construction: CGAL rounds to nearest)
-      end = &nearer.emplace_back(CGAL::midpoint(pts[k], *end));
+      nearer = CGAL::midpoint(pts[k], *end);
+      end = &*nearer;
     }
   }
 }
