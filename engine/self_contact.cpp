@@ -29,31 +29,51 @@ struct Triangle {
 };
 
 // The fans of the facets, without the triangles whose corners are collinear
-// (those lie on their facet's border, which its other triangles hold), and
-// how many vertices they have, numbered 0, 1, ... by `local(id, count)` (which
-// gives a new one the number count, then counted).
+// (those lie on their facet's border, which its other triangles hold), in facet
+// order, made in chunks on `threads` threads; their local numbers are set by
+// `numbered` below.
+std::vector<Triangle> fan_triangles(const Scene& scene, const WorldFacets& wf, const std::vector<int>& facets,
+                                    int threads) {
+  std::size_t most = 0;
+  for (int fi : facets) most += wf.facets[static_cast<std::size_t>(fi)].v.size() - 2;
+  std::vector<Triangle> tris;
+  tris.reserve(most);   // (one block: grown push by push, its pages were zeroed again and again)
+  const int n = static_cast<int>(facets.size()), size = 2048;
+  parallel_append(tris, chunk_count(n, size), threads, [&](int c, std::vector<Triangle>& out) {
+    const Chunk r = chunk(c, n, size);
+    for (int i = r.begin; i < r.end; ++i) {
+      const int fi = facets[static_cast<std::size_t>(i)];
+      const auto& v = wf.facets[static_cast<std::size_t>(fi)].v;
+      for (std::size_t k = 1; k + 1 < v.size(); ++k)
+        if (!world::collinear(scene.vertices[v[0]], scene.vertices[v[k]], scene.vertices[v[k + 1]]))
+          out.push_back({{v[0], v[k], v[k + 1]},
+                         {},
+                         {&scene.vertices[v[0]], &scene.vertices[v[k]], &scene.vertices[v[k + 1]]},
+                         fi});
+    }
+  });
+  return tris;
+}
+
+// The fans of `tris` with their vertices numbered 0, 1, ... in order of first
+// use by `local(id, count)` (which gives a new one the number count, then
+// counted), and how many vertices they have.
 struct Fans {
   std::vector<Triangle> tris;
   std::uint32_t vertices = 0;
 };
 template <class Local>
-Fans fans(const Scene& scene, const WorldFacets& wf, const std::vector<int>& facets, Local&& local) {
+Fans numbered(std::vector<Triangle> tris, Local&& local) {
   Fans out;
-  auto number = [&](std::uint32_t id) { return local(id, out.vertices); };
-  for (int fi : facets) {
-    const auto& v = wf.facets[static_cast<std::size_t>(fi)].v;
-    for (std::size_t k = 1; k + 1 < v.size(); ++k)
-      if (!world::collinear(scene.vertices[v[0]], scene.vertices[v[k]], scene.vertices[v[k + 1]]))
-        out.tris.push_back({{v[0], v[k], v[k + 1]},
-                            {number(v[0]), number(v[k]), number(v[k + 1])},
-                            {&scene.vertices[v[0]], &scene.vertices[v[k]], &scene.vertices[v[k + 1]]},
-                            fi});
-  }
+  out.tris = std::move(tris);
+  for (Triangle& t : out.tris)
+    for (std::size_t k = 0; k < 3; ++k) t.local[k] = local(t.v[k], out.vertices);
   return out;
 }
 // Numbered through `slot` (per canonical id, ~0u), which is left as it was found.
-Fans fans(const Scene& scene, const WorldFacets& wf, const std::vector<int>& facets, std::vector<std::uint32_t>& slot) {
-  Fans out = fans(scene, wf, facets, [&](std::uint32_t id, std::uint32_t& count) {
+Fans fans(const Scene& scene, const WorldFacets& wf, const std::vector<int>& facets, std::vector<std::uint32_t>& slot,
+          int threads) {
+  Fans out = numbered(fan_triangles(scene, wf, facets, threads), [&](std::uint32_t id, std::uint32_t& count) {
     if (slot[id] == ~0u) slot[id] = count++;
     return slot[id];
   });
@@ -71,7 +91,7 @@ Fans fans(const Scene& scene, const WorldFacets& wf, const std::vector<int>& fac
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
   // (Numbers by rank among the ids, then made consecutive in order of use.)
   std::vector<std::uint32_t> slot(ids.size(), ~0u);
-  return fans(scene, wf, facets, [&](std::uint32_t id, std::uint32_t& count) {
+  return numbered(fan_triangles(scene, wf, facets, 1), [&](std::uint32_t id, std::uint32_t& count) {
     std::uint32_t& s = slot[static_cast<std::size_t>(std::lower_bound(ids.begin(), ids.end(), id) - ids.begin())];
     if (s == ~0u) s = count++;
     return s;
@@ -297,16 +317,27 @@ bool any_box_pair(const std::vector<CGAL::Bbox_3>& boxes, int threads, F&& f) {
 // Whether the triangles of one component meet other than where they share corners.
 bool meets(const Fans& fans, int threads) {
   const std::vector<Triangle>& tris = fans.tris;
+  // Each triangle's box, and its normal once for the side tests, in chunks.
+  const int n = static_cast<int>(tris.size()), size = 4096;
   std::vector<CGAL::Bbox_3> boxes;
-  std::vector<world::PlaneSide> planes;   // (each triangle's normal once, for the side tests)
+  std::vector<world::PlaneSide> planes;
   boxes.reserve(tris.size());
   planes.reserve(tris.size());
-  for (const Triangle& t : tris) {
-    CGAL::Bbox_3 b;
-    for (const Vec3* p : t.corner) b += CGAL::Bbox_3(p->x, p->y, p->z, p->x, p->y, p->z);
-    boxes.push_back(b);
-    planes.emplace_back(*t.corner[0], *t.corner[1], *t.corner[2]);
-  }
+  parallel_append(boxes, chunk_count(n, size), threads, [&](int c, std::vector<CGAL::Bbox_3>& out) {
+    const Chunk r = chunk(c, n, size);
+    for (int i = r.begin; i < r.end; ++i) {
+      CGAL::Bbox_3 b;
+      for (const Vec3* p : tris[static_cast<std::size_t>(i)].corner) b += CGAL::Bbox_3(p->x, p->y, p->z, p->x, p->y, p->z);
+      out.push_back(b);
+    }
+  });
+  parallel_append(planes, chunk_count(n, size), threads, [&](int c, std::vector<world::PlaneSide>& out) {
+    const Chunk r = chunk(c, n, size);
+    for (int i = r.begin; i < r.end; ++i) {
+      const Triangle& t = tris[static_cast<std::size_t>(i)];
+      out.emplace_back(*t.corner[0], *t.corner[1], *t.corner[2]);
+    }
+  });
   const FlatStars stars(fans, threads);
   return any_box_pair(boxes, threads, [&](std::uint32_t i, std::uint32_t j) {
     return tris[i].facet != tris[j].facet && !share_flat_star(tris[i], tris[j], stars) &&
@@ -328,7 +359,7 @@ std::vector<char> meets_itself(const Scene& scene, const WorldFacets& wf, const 
   for (std::size_t k = 0; k < components.size(); ++k) {
     if (components[k].size() < kLarge) { small.push_back(static_cast<int>(k)); continue; }
     if (slot.empty()) slot.assign(scene.vertices.size(), ~0u);
-    out[k] = meets(fans(scene, wf, components[k], slot), threads);
+    out[k] = meets(fans(scene, wf, components[k], slot, threads), threads);
   }
   parallel_chunks(static_cast<int>(small.size()), 64, threads, [&](int, Chunk r) {
     for (int i = r.begin; i < r.end; ++i) {
