@@ -17,15 +17,26 @@
 namespace vismap::engine {
 namespace {
 
+// (16 bytes, and no coordinates: grouping edges reads no vertex. Which way an
+// edge runs is its group's business: LineDir.)
 struct Edge {
   int facet;
   std::uint32_t edge;   // a convex planar polygon is one facet of up to 10^6 corners
-  std::uint8_t axis;    // the first axis along which the edge moves
-  bool forward;         // p -> q runs that axis upwards
   std::uint32_t p, q;   // vertex ids, facet order
 };
 
 double coord(const Vec3& v, int k) { return k == 0 ? v.x : k == 1 ? v.y : v.z; }
+
+// The line through two distinct points: the first axis along which it moves,
+// and whether it moves up that axis from the first point to the second.
+struct LineDir {
+  std::uint8_t axis;
+  bool up;
+};
+LineDir line_dir(const Vec3& a, const Vec3& b) {
+  const std::uint8_t axis = a.x != b.x ? 0 : a.y != b.y ? 1 : 2;
+  return {axis, coord(a, axis) < coord(b, axis)};
+}
 
 // The supporting line of p->q as an exact canonical key: the first axis k along
 // which the line moves, the slopes d_j/d_k and the offsets at x_k = 0, as
@@ -212,12 +223,9 @@ struct EdgeGroups {
 };
 
 // Facet f's edge i (p != q).
-Edge edge_of(const Scene& scene, const WorldFacets& wf, int f, std::size_t i) {
+Edge edge_of(const WorldFacets& wf, int f, std::size_t i) {
   const auto& v = wf.facets[static_cast<std::size_t>(f)].v;
-  const std::uint32_t p = v[i], q = v[(i + 1) % v.size()];
-  const Vec3 &a = scene.vertices[p], &b = scene.vertices[q];
-  const std::uint8_t axis = a.x != b.x ? 0 : a.y != b.y ? 1 : 2;
-  return Edge{f, static_cast<std::uint32_t>(i), axis, coord(a, axis) < coord(b, axis), p, q};
+  return Edge{f, static_cast<std::uint32_t>(i), v[i], v[(i + 1) % v.size()]};
 }
 
 EdgeGroups group_by_vertex_pair(const Scene& scene, const WorldFacets& wf, int threads) {
@@ -256,7 +264,7 @@ EdgeGroups group_by_vertex_pair(const Scene& scene, const WorldFacets& wf, int t
   g.edges.resize(nedges);
   parallel_for(parts, threads, [&](int k) {
     std::vector<std::uint32_t>& next = count[static_cast<std::size_t>(k)];
-    each_lower(k, [&](int f, std::size_t i, std::uint32_t lo) { g.edges[next[lo]++] = edge_of(scene, wf, f, i); });
+    each_lower(k, [&](int f, std::size_t i, std::uint32_t lo) { g.edges[next[lo]++] = edge_of(wf, f, i); });
   });
   // Each vertex's edges by the higher vertex (stable), and where the groups start;
   // parts of the vertices in parallel.
@@ -350,10 +358,10 @@ MatchedEdges in_facet_order(std::vector<MatchedEdges>& found, std::size_t nfacet
 MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int cell_bits, int threads) {
   const Cells cells(cell_bits);
   auto vertex = [&](std::uint32_t id) -> const Vec3& { return scene.vertices[id]; };
-  auto exact_key = [&](const Edge& e) {
+  auto exact_key = [&](const Edge& e, int axis) {
     // Keyed from the lower vertex id so that both directions build the same numbers.
     const std::uint32_t lo = std::min(e.p, e.q), hi = std::max(e.p, e.q);
-    return line_key(vertex(lo), vertex(hi), e.axis);
+    return line_key(vertex(lo), vertex(hi), axis);
   };
 
   // Edges between the same two vertices (most edges of a mesh, twice each) are
@@ -365,15 +373,22 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
   const std::size_t ngroups = groups.start.size() - 1;
   auto group_edge = [&](std::size_t g) -> const Edge& { return edges[groups.start[g]]; };
 
-  // Each group's line cells, in parallel.
+  // Each group's line, from its lower vertex id to its higher (the exact key's
+  // way), and the line's cells, in parallel.
+  std::vector<LineDir> dir(ngroups);
   std::vector<std::uint64_t> cells_at(ngroups);
+  auto lower = [&](std::size_t g) -> const Vec3& { return vertex(std::min(group_edge(g).p, group_edge(g).q)); };
+  auto higher = [&](std::size_t g) -> const Vec3& { return vertex(std::max(group_edge(g).p, group_edge(g).q)); };
   parallel_chunks(static_cast<int>(ngroups), 8192, threads, [&](int, Chunk r) {
-    auto line = [&](std::size_t i) {   // (from the lower vertex id: the exact key's way)
-      const Edge& e = group_edge(static_cast<std::size_t>(r.begin) + i);
-      return std::tuple<const Vec3&, const Vec3&, int>(vertex(std::min(e.p, e.q)), vertex(std::max(e.p, e.q)), e.axis);
+    for (auto g = static_cast<std::size_t>(r.begin); g < static_cast<std::size_t>(r.end); ++g) dir[g] = line_dir(lower(g), higher(g));
+    auto line = [&](std::size_t i) {
+      const std::size_t g = static_cast<std::size_t>(r.begin) + i;
+      return std::tuple<const Vec3&, const Vec3&, int>(lower(g), higher(g), dir[g].axis);
     };
     cells_of_lines(static_cast<std::size_t>(r.end - r.begin), line, cells, cells_at.data() + r.begin);
   });
+  // Whether edge e (of group g) runs up its line's axis.
+  auto forward = [&](const Edge& e, std::size_t g) { return (e.p < e.q) == dir[g].up; };
   // Groups sorted by (cells, vertex pair): a run of several groups with equal
   // cells is a candidate line, handled once, by its first group.
   struct Slot {
@@ -413,7 +428,7 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
     lo = hi;
   }
 
-  auto sharer = [](const Edge& e) { return Sharer{e.facet, e.edge, e.forward}; };
+  auto sharer = [](const Edge& e, bool up_its_line) { return Sharer{e.facet, e.edge, up_its_line}; };
   auto by_facet = [](const Sharer& x, const Sharer& y) {
     return x.facet < y.facet || (x.facet == y.facet && x.edge < y.edge);
   };
@@ -431,8 +446,7 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
     std::vector<std::uint32_t> active, group;
     std::vector<std::pair<LineKey, std::uint32_t>> keyed;
   };
-  auto sweep_line = [&](const std::uint32_t* line, std::size_t n, Scratch& w, std::vector<WorldPiece>& pieces) {
-    const int k = edges[line[0]].axis;
+  auto sweep_line = [&](const std::uint32_t* line, std::size_t n, int k, Scratch& w, std::vector<WorldPiece>& pieces) {
     std::vector<Event>& events = w.events;
     std::vector<std::uint32_t>& active = w.active;
     events.clear();
@@ -456,7 +470,10 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
       }
       if (!active.empty() && j < events.size()) {
         WorldPiece piece{here, events[j].vertex, {}};
-        for (auto ei : active) piece.sharers.push_back(sharer(edges[ei]));
+        for (auto ei : active) {
+          const Edge& e = edges[ei];
+          piece.sharers.push_back(sharer(e, coord(vertex(e.p), k) < coord(vertex(e.q), k)));
+        }
         std::sort(piece.sharers.begin(), piece.sharers.end(), by_facet);
         pieces.push_back(std::move(piece));
       }
@@ -472,8 +489,9 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
   // the same two vertices; the first is its first sharer: they are in facet order).
   auto alone_piece = [&](std::size_t g) {
     const Edge& e = group_edge(g);
-    WorldPiece piece{e.forward ? e.p : e.q, e.forward ? e.q : e.p, {}};
-    for (std::size_t i = groups.start[g]; i < groups.start[g + 1]; ++i) piece.sharers.push_back(sharer(edges[i]));
+    WorldPiece piece{forward(e, g) ? e.p : e.q, forward(e, g) ? e.q : e.p, {}};
+    for (std::size_t i = groups.start[g]; i < groups.start[g + 1]; ++i)
+      piece.sharers.push_back(sharer(edges[i], forward(edges[i], g)));
     return piece;
   };
   // A run's first group makes the pieces of every group of the run, told apart
@@ -485,7 +503,7 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
     for (std::size_t s = lo; s < ngroups && slots[s].hash == slots[lo].hash; ++s) {
       const std::uint32_t h = slots[s].group;
       for (std::size_t i = groups.start[h]; i < groups.start[h + 1]; ++i)
-        keyed.emplace_back(exact_key(edges[i]), static_cast<std::uint32_t>(i));
+        keyed.emplace_back(exact_key(edges[i], dir[h].axis), static_cast<std::uint32_t>(i));
     }
     std::sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) {
       if (key_less(x.first, y.first)) return true;
@@ -498,7 +516,7 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
       while (b < keyed.size() && !key_less(keyed[a].first, keyed[b].first)) ++b;
       w.group.clear();
       for (std::size_t i = a; i < b; ++i) w.group.push_back(keyed[i].second);
-      sweep_line(w.group.data(), w.group.size(), w, out.pieces);
+      sweep_line(w.group.data(), w.group.size(), keyed[a].first.axis, w, out.pieces);
       a = b;
     }
     for (std::size_t i = first; i < out.pieces.size(); ++i)
