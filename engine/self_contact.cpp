@@ -168,11 +168,22 @@ class FlatStars {
   std::vector<char> flat_;
 };
 
-// Whether triangles a and b share a corner whose star is flat.
-bool share_flat_star(const Triangle& a, const Triangle& b, const FlatStars& stars) {
+// What the pair search reads of a triangle beside its box, to pass over the
+// pairs that cannot meet elsewhere without looking further: its corners, its
+// facet, and which corners' stars are flat.
+struct Corners {
+  std::array<std::uint32_t, 3> v;   // canonical vertex ids
+  int facet;
+  std::uint8_t flat;                // bit k: corner k's star is flat (FlatStars)
+};
+
+// Whether two triangles meet only where they share corners and edges, known
+// without arithmetic: they belong to one facet, or share a corner whose star is flat.
+bool known_apart(const Corners& a, const Corners& b) {
+  if (a.facet == b.facet) return true;
   for (std::size_t k = 0; k < 3; ++k) {
     const auto u = a.v[k];
-    if ((u == b.v[0] || u == b.v[1] || u == b.v[2]) && stars.at(a.local[k])) return true;
+    if ((a.flat >> k & 1) && (u == b.v[0] || u == b.v[1] || u == b.v[2])) return true;
   }
   return false;
 }
@@ -224,13 +235,14 @@ bool meet(const Triangle& a, const Triangle& b, const world::PlaneSide& plane_a,
   return CGAL::do_intersect(ea, tb) || CGAL::do_intersect(eb, ta);
 }
 
-// Pairs of boxes that meet (closed boxes), each once, until `f` returns true: a
-// uniform grid of about one cell per box, each box listed in the cells it
-// meets; a pair is taken in the cell of the lower corner of its common box.
-// Chunks of cells on `threads` threads (the answer is whether any pair does:
-// the same whichever finds it).
-template <class F>
-bool any_box_pair(const std::vector<CGAL::Bbox_3>& boxes, int threads, F&& f) {
+// Pairs of boxes that meet (closed boxes), each once, until `f` returns true,
+// but those that skip(key, key) passes over: a uniform grid of about one cell
+// per box, each box listed in the cells it meets; a pair is taken in the cell
+// of the lower corner of its common box. Chunks of cells on `threads` threads
+// (the answer is whether any pair does: the same whichever finds it).
+template <class Key, class Skip, class F>
+bool any_box_pair(const std::vector<CGAL::Bbox_3>& boxes, const std::vector<Key>& keys, int threads, Skip&& skip,
+                  F&& f) {
   const std::size_t n = boxes.size();
   if (n < 2) return false;
   CGAL::Bbox_3 all = boxes[0];
@@ -287,23 +299,44 @@ bool any_box_pair(const std::vector<CGAL::Bbox_3>& boxes, int threads, F&& f) {
   for (std::size_t i = 0; i < n; ++i)
     for_cells(range[i], [&](std::size_t c) { member[fill[c]++] = static_cast<std::uint32_t>(i); });
   // In each cell, its boxes by their lower x: a box meets only those after it
-  // that start before it ends.
+  // that start before it ends. (Copied side by side first, with their keys and
+  // whether each starts in this cell along each axis: a pair's home is this
+  // cell when, along every axis, one of the two starts here. The sweep then
+  // reads one array in order; the boxes' own places only for the pairs f is
+  // asked about.)
+  struct Entry {
+    CGAL::Bbox_3 box;
+    Key key;
+    std::uint32_t item;
+    std::uint8_t starts;   // bit k: the box's lowest cell along axis k is this cell's
+  };
   std::atomic<bool> found{false};
   parallel_chunks(static_cast<int>(cells), 1024, threads, [&](int, Chunk r) {
+    std::vector<Entry> here;
     for (auto c = static_cast<std::size_t>(r.begin); c < static_cast<std::size_t>(r.end); ++c) {
       if (found.load(std::memory_order_relaxed)) return;
+      if (start[c + 1] - start[c] < 2) continue;
+      const std::size_t at[3] = {c % static_cast<std::size_t>(g[0]), c / static_cast<std::size_t>(g[0]) % static_cast<std::size_t>(g[1]),
+                                 c / (static_cast<std::size_t>(g[0]) * static_cast<std::size_t>(g[1]))};
       const auto first = member.begin() + start[c], last = member.begin() + start[c + 1];
-      std::sort(first, last, [&](std::uint32_t i, std::uint32_t j) { return boxes[i].xmin() < boxes[j].xmin(); });
-      for (auto s = first; s != last; ++s) {
-        const CGAL::Bbox_3& a = boxes[*s];
-        const Cells& ra = range[*s];
-        for (auto t = s + 1; t != last && boxes[*t].xmin() <= a.xmax(); ++t) {
-          const CGAL::Bbox_3& b = boxes[*t];
+      std::sort(first, last, [&](std::uint32_t i, std::uint32_t j) {
+        return boxes[i].xmin() < boxes[j].xmin() || (boxes[i].xmin() == boxes[j].xmin() && i < j);
+      });
+      here.clear();
+      for (auto m = first; m != last; ++m) {
+        const std::uint32_t i = *m;
+        std::uint8_t starts = 0;
+        for (int a = 0; a < 3; ++a)
+          if (static_cast<std::size_t>(range[i].lo[a]) == at[a]) starts |= static_cast<std::uint8_t>(1u << a);
+        here.push_back(Entry{boxes[i], keys[i], i, starts});
+      }
+      for (auto s = here.begin(); s != here.end(); ++s) {
+        const CGAL::Bbox_3& a = s->box;
+        for (auto t = s + 1; t != here.end() && t->box.xmin() <= a.xmax(); ++t) {
+          const CGAL::Bbox_3& b = t->box;
           if (a.ymax() < b.ymin() || b.ymax() < a.ymin() || a.zmax() < b.zmin() || b.zmax() < a.zmin()) continue;
-          const Cells& rb = range[*t];
-          const std::size_t home =
-              index(std::max(ra.lo[0], rb.lo[0]), std::max(ra.lo[1], rb.lo[1]), std::max(ra.lo[2], rb.lo[2]));
-          if (home == c && f(*s, *t)) {
+          if ((s->starts | t->starts) != 7 || skip(s->key, t->key)) continue;
+          if (f(s->item, t->item)) {
             found.store(true, std::memory_order_relaxed);
             return;
           }
@@ -339,9 +372,20 @@ bool meets(const Fans& fans, int threads) {
     }
   });
   const FlatStars stars(fans, threads);
-  return any_box_pair(boxes, threads, [&](std::uint32_t i, std::uint32_t j) {
-    return tris[i].facet != tris[j].facet && !share_flat_star(tris[i], tris[j], stars) &&
-           meet(tris[i], tris[j], planes[i], planes[j]);
+  std::vector<Corners> corners;
+  corners.reserve(tris.size());
+  parallel_append(corners, chunk_count(n, size), threads, [&](int c, std::vector<Corners>& out) {
+    const Chunk r = chunk(c, n, size);
+    for (int i = r.begin; i < r.end; ++i) {
+      const Triangle& t = tris[static_cast<std::size_t>(i)];
+      std::uint8_t flat = 0;
+      for (std::size_t k = 0; k < 3; ++k)
+        if (stars.at(t.local[k])) flat |= static_cast<std::uint8_t>(1u << k);
+      out.push_back(Corners{t.v, t.facet, flat});
+    }
+  });
+  return any_box_pair(boxes, corners, threads, known_apart, [&](std::uint32_t i, std::uint32_t j) {
+    return meet(tris[i], tris[j], planes[i], planes[j]);
   });
 }
 
