@@ -242,17 +242,23 @@ inline Interval projected_interval(const ExactSource& source, std::uint32_t v, i
   return Interval(i.first, i.second);
 }
 
-// The interval perspective_number's value has.
-inline Interval perspective_interval(const ExactSource& source, std::uint32_t v, int r) {
-  std::pair<double, double> in, iw;
-  const Vec3& p = (*source.vertices)[v];
-  if (!projected_bounds(source.m[static_cast<std::size_t>(r)], p, source.k, in.first, in.second))
-    in = source.row_at(r, v, true).to_interval();
+// The interval of vertex v's W (row 3 of the view, unscaled), as the
+// perspective quotients divide by it: a vertex's three coordinates share it.
+inline Interval w_interval(const ExactSource& source, std::uint32_t v) {
+  std::pair<double, double> iw;
   // (W > 0: an interval reaching 0 would make the quotient's unbounded.)
-  if (!projected_bounds(source.m[3], p, 0, iw.first, iw.second) || !(iw.first > 0))
+  if (!projected_bounds(source.m[3], (*source.vertices)[v], 0, iw.first, iw.second) || !(iw.first > 0))
     iw = source.row_at(3, v, false).to_interval();
+  return Interval(iw.first, iw.second);
+}
+
+// The interval perspective_number's value has (w: w_interval(source, v)).
+inline Interval perspective_interval(const ExactSource& source, std::uint32_t v, int r, const Interval& w) {
+  std::pair<double, double> in;
+  if (!projected_bounds(source.m[static_cast<std::size_t>(r)], (*source.vertices)[v], source.k, in.first, in.second))
+    in = source.row_at(r, v, true).to_interval();
   CGAL::Protect_FPU_rounding<true> upward;
-  return Interval(in.first, in.second) / Interval(iw.first, iw.second);
+  return Interval(in.first, in.second) / w;
 }
 #endif
 
@@ -272,26 +278,35 @@ inline FT projected_number(const ExactSource& source, std::uint32_t v, int r, bo
 }
 
 // Row r over row 3 (W > 0) of the view applied to input vertex v, times 2^k, as
-// a kernel number: a lazy leaf (a double where its interval is one).
-inline FT perspective_number(const ExactSource& source, std::uint32_t v, int r) {
+// a kernel number: a lazy leaf (a double where its interval is one), its
+// interval the quotient's by w = w_interval(source, v) (doubles on the float kernel).
 #ifdef VISMAP_FLOAT_KERNEL
+inline FT perspective_number(const ExactSource& source, std::uint32_t v, int r) {
   const auto &n = source.m[static_cast<std::size_t>(r)], &w = source.m[3];
   const Vec3& p = (*source.vertices)[v];
   return std::ldexp((n[0] * p.x + n[1] * p.y + n[2] * p.z + n[3]) / (w[0] * p.x + w[1] * p.y + w[2] * p.z + w[3]),
                     source.k);
+}
 #else
-  const Interval q = perspective_interval(source, v, r);
+inline FT perspective_number(const ExactSource& source, std::uint32_t v, int r, const Interval& w) {
+  const Interval q = perspective_interval(source, v, r, w);
   if (q.is_point()) return FT(q.inf());
   return FT(new PerspectiveRep(q, source, v, r));
-#endif
 }
+#endif
 
-// The sign of row . (p, 1), exactly.
+// The sign of row . (p, 1), exactly: from its bounds where they tell
+// (projected_bounds: the exact value rounded down and up), else from the value.
 inline int projected_sign(const std::array<double, 4>& row, const Vec3& p) {
 #ifdef VISMAP_FLOAT_KERNEL
   const double v = row[0] * p.x + row[1] * p.y + row[2] * p.z + row[3];
   return (v > 0) - (v < 0);
 #else
+  double lo, hi;
+  if (projected_bounds(row, p, 0, lo, hi)) {
+    if (lo > 0) return 1;
+    if (hi < 0) return -1;
+  }
   return projected_mpzf(row, p, 0).sign();
 #endif
 }

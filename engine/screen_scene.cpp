@@ -640,8 +640,15 @@ P3 CurveMaker::make_image(std::uint32_t u) const {
     };
     return P3{coordinate(0), coordinate(1), coordinate(2)};
   }
-  // Perspective: X/W, Y/W, Z/W as lazy leaves (the quotient's interval now).
+  // Perspective: X/W, Y/W, Z/W as lazy leaves (the quotient's interval now;
+  // W's, which the three share, found once).
+#ifdef VISMAP_FLOAT_KERNEL
   return P3{perspective_number(*exact, id, 0), perspective_number(*exact, id, 1), perspective_number(*exact, id, 2)};
+#else
+  const Interval w = w_interval(*exact, id);
+  return P3{perspective_number(*exact, id, 0, w), perspective_number(*exact, id, 1, w),
+            perspective_number(*exact, id, 2, w)};
+#endif
 }
 
 ImageBounds CurveMaker::bounds_of(std::uint32_t u) const {
@@ -653,9 +660,10 @@ ImageBounds CurveMaker::bounds_of(std::uint32_t u) const {
   ImageBounds b;
   Interval* out[3] = {&b.x, &b.y, &b.z};
   const Vec3& p = scene->vertices[id];
+  const Interval w = view->perspective ? w_interval(*exact, id) : Interval(1);   // (W's, shared by the three)
   for (int r = 0; r < 3; ++r) {
     double d;
-    *out[r] = view->perspective                    ? perspective_interval(*exact, id, r)
+    *out[r] = view->perspective                    ? perspective_interval(*exact, id, r, w)
               : exact_in_doubles(view->m[r], p, d) ? scaled_interval(d, k)
                                                    : projected_interval(*exact, id, r, true);
   }
