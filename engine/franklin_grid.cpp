@@ -1450,11 +1450,12 @@ struct Cutter {
     return CGAL::collinear_are_strictly_ordered_along_line(C.s->xy(), p, C.t->xy());
   }
 
-  // Cuts C and D where they cross or touch; true where they may meet (closed
-  // segments), false where they surely do not.
-  bool intersect(int ci, int di) {
+  // Cuts C and D where they cross or touch (but where they cross apart: see
+  // meet()); true where they may meet (closed segments) other than crossing
+  // apart, false where they surely do not.
+  bool intersect(int ci, int di, bool apart) {
     if (!boxes_meet(ci, di)) return false;
-    return meet(ci, di, false);
+    return meet(ci, di, apart);
   }
   bool boxes_meet(int ci, int di) {
     if (!CGAL::do_overlap(ss.curves[ci].box, ss.curves[di].box)) return false;
@@ -1503,8 +1504,8 @@ struct Cutter {
   }
 
   // intersect() for C and D whose boxes meet. Curves `apart` (apart()) are cut
-  // only where they overlap or one ends on the other: a proper crossing is no
-  // cut (and true is then all that is known).
+  // only where they overlap or one ends on the other: a proper crossing (or
+  // none) is no cut, and changes nothing of either (false).
   bool meet(int ci, int di, bool apart) {
     const Curve &C = ss.curves[ci], &D = ss.curves[di];
     const P2 &cs = C.s->xy(), &ct = C.t->xy(), &ds = D.s->xy(), &dt = D.t->xy();   // (references: no handle copied)
@@ -1524,7 +1525,7 @@ struct Cutter {
     if (o1 == CGAL::COLLINEAR && o2 == CGAL::COLLINEAR) { overlap(ci, di); return true; }
     if (apart && o1 != CGAL::COLLINEAR && o2 != CGAL::COLLINEAR) {   // (a proper crossing or none)
       ++row.uncut;
-      return true;
+      return false;
     }
     auto o3 = CGAL::orientation(ds, dt, cs), o4 = CGAL::orientation(ds, dt, ct);
     if (o3 != CGAL::COLLINEAR && o3 == o4) return false;
@@ -1585,46 +1586,52 @@ struct Cutter {
 
 namespace {
 
-// Each curve's depth range and its two facets' faces where it is covered
-// (Curve::covered), else NaNs (never apart from anything).
+// Each curve's depth range, whether it is covered (Curve::covered), and its
+// facets' faces; NaNs where more than two facets share it (never apart from
+// anything).
 struct DepthSpan {
   double lo, hi;
-  std::array<int, 2> face;
+  std::array<int, 2> face;   // (-1: none)
+  bool covered;
 };
-std::vector<DepthSpan> covered_spans(const ScreenScene& ss, int threads) {
+std::vector<DepthSpan> depth_spans(const ScreenScene& ss, int threads) {
   const int n = static_cast<int>(ss.curves.size());
   std::vector<DepthSpan> span(static_cast<std::size_t>(n));
   parallel_chunks(n, 16384, threads, [&](int, Chunk r) {
     for (int i = r.begin; i < r.end; ++i) {
       const Curve& c = ss.curves[static_cast<std::size_t>(i)];
       DepthSpan& d = span[static_cast<std::size_t>(i)];
-      if (!c.covered) {
-        d = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN(), {-1, -1}};
-        continue;
-      }
+      d = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN(), {-1, -1}, false};
+      if (c.sharers.size() > 2) continue;
       const Interval zs = ss.z_of(*c.s), zt = ss.z_of(*c.t);
       d.lo = std::min(zs.inf(), zt.inf());
       d.hi = std::max(zs.sup(), zt.sup());
-      for (std::size_t k = 0; k < 2; ++k) d.face[k] = ss.facets[static_cast<std::size_t>(c.sharers[k])].face;
+      for (std::size_t k = 0; k < c.sharers.size(); ++k)
+        d.face[k] = ss.facets[static_cast<std::size_t>(c.sharers[k])].face;
+      d.covered = c.covered;
     }
   });
   return span;
 }
 
-// Two covered curves, one wholly nearer than the other (their depth ranges
-// apart: on a straight curve depth is affine, between its ends' depths), with
-// no face in common. Where they cross properly on screen, the nearer one's two
-// facets hide the farther one on both sides (a face hides no edge of its own:
-// hence no common face, as where a fan folds over its own edge), so its
-// visibility does not change there; and the farther one, on no outline,
-// changes nothing of the nearer one's: no map vertex, no change of visibility
-// or of the faces beside them. Their crossing needs no point. (But where they
-// overlap, a line right behind another on screen lies in no facet's interior
-// and is visible; and where one ends on the other, Cutter cuts as ever.)
+// Two curves, one wholly nearer than the other (their depth ranges apart: on a
+// straight curve depth is affine, between its ends' depths), the nearer one
+// covered, and no face of its two facets a face of the farther one. Where they
+// cross properly on screen, the nearer one's two facets hide the farther one
+// on both sides (a face hides no edge of its own: hence no common face, as
+// where a fan folds over its own edge), so its visibility does not change
+// there; and the farther one's facets, at its depth there, neither hide the
+// nearer one nor lie beside it where it is seen (its own facets do). No map
+// vertex, no change of visibility or of the faces beside either: their
+// crossing needs no point. (But where they overlap, a line right behind
+// another on screen lies in no facet's interior and is visible; and where one
+// ends on the other, Cutter cuts as ever.)
 bool apart(const DepthSpan& a, const DepthSpan& b) {
-  if (!(a.hi < b.lo || b.hi < a.lo)) return false;
-  for (int f : a.face)
-    if (f == b.face[0] || f == b.face[1]) return false;
+  const DepthSpan* nearer = a.hi < b.lo ? &a : b.hi < a.lo ? &b : nullptr;   // (NaNs: neither)
+  if (nearer == nullptr || !nearer->covered) return false;
+  const DepthSpan& farther = nearer == &a ? b : a;
+  for (int f : nearer->face)
+    if (f == farther.face[0] || f == farther.face[1]) return false;
   return true;
 }
 
@@ -1670,9 +1677,9 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
     for (int fi : cell.facets) cutter.pierce(ci, fi);
     if (cell.blocker >= 0) cutter.pierce(ci, cell.blocker);
   };
+  const std::vector<DepthSpan> span = depth_spans(ss, threads);
+  auto is_apart = [&](int a, int b) { return apart(span[static_cast<std::size_t>(a)], span[static_cast<std::size_t>(b)]); };
   if (regions) {
-    const std::vector<DepthSpan> span = covered_spans(ss, threads);
-    auto is_apart = [&](int a, int b) { return apart(span[static_cast<std::size_t>(a)], span[static_cast<std::size_t>(b)]); };
     each_cell([&](Cutter& cutter, const Cell& cell) {
       const auto& cs = cell.curves;
       if (cs.size() >= 2) {   // (the pairs on intervals first: one rounding switch per cell)
@@ -1693,9 +1700,10 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
     // The drawn lines alone (Franklin's step 8 iv-v): every pair with a drawn
     // curve. A curve that is not drawn but meets a drawn one is needed too (a
     // region boundary ending there splits the drawn line's segment; a nearer
-    // seam over it hides it): it is cut against every curve, as for the whole
-    // map, so that its pieces and their labels are the same. Pairs of other
-    // curves that are not drawn are never looked at.
+    // seam over it hides it), unless they cross apart (apart(): that changes
+    // nothing): it is cut against every curve, as for the whole map, so that
+    // its pieces and their labels are the same. Pairs of other curves that are
+    // not drawn are never looked at.
     std::vector<char> drawn(n);
     for (std::size_t c = 0; c < n; ++c) drawn[c] = ss.curves[c].drawn;
     cuts.needed = drawn;
@@ -1703,7 +1711,7 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
       const auto& cs = cell.curves;
       for (std::size_t i = 0; i < cs.size(); ++i)
         for (std::size_t j = i + 1; j < cs.size(); ++j)
-          if ((drawn[cs[i]] || drawn[cs[j]]) && cutter.intersect(cs[i], cs[j])) {
+          if ((drawn[cs[i]] || drawn[cs[j]]) && cutter.intersect(cs[i], cs[j], is_apart(cs[i], cs[j]))) {
             cutter.row.met.push_back(cs[i]);
             cutter.row.met.push_back(cs[j]);
           }
@@ -1713,7 +1721,8 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
       const auto& cs = cell.curves;
       for (std::size_t i = 0; i < cs.size(); ++i)
         for (std::size_t j = i + 1; j < cs.size(); ++j)
-          if (!drawn[cs[i]] && !drawn[cs[j]] && (cuts.needed[cs[i]] || cuts.needed[cs[j]])) cutter.intersect(cs[i], cs[j]);
+          if (!drawn[cs[i]] && !drawn[cs[j]] && (cuts.needed[cs[i]] || cuts.needed[cs[j]]))
+            cutter.intersect(cs[i], cs[j], is_apart(cs[i], cs[j]));
       for (int ci : cs)
         if (cuts.needed[ci]) pierce(cutter, cell, ci);
     });

@@ -568,7 +568,7 @@ TEST(CoveredCrossings, LeftUncutWithoutChangingTheMap) {
   shots.push_back({"folded fans", vismap::read_scene((fs::path(VISMAP_DATA_DIR) / "stress_fold_818.off").string()),
                    ortho({-0.25, -0.5, -1})});
   shots.push_back({"piercing boxes", vismap::gen::interpenetrating_boxes(6, 3), ortho({-1, -2, -3})});
-  std::int64_t uncut = 0;
+  std::int64_t uncut = 0, uncut_lines = 0;
   for (Shot& shot : shots) {
     shot.scene.file = shot.what;
     const vismap::View view = vismap::make_view(shot.camera, shot.scene);
@@ -583,8 +583,16 @@ TEST(CoveredCrossings, LeftUncutWithoutChangingTheMap) {
     vismap_check::Options check;
     check.samples = 600;
     expect_checked(shot.scene, json, check, shot.what);
+    // A lines-only drawing leaves the same crossings uncut (and makes no curve
+    // needed for them): the same segments.
+    vismap::Options lines = opt;
+    lines.regions = false;
+    uncut_lines += vismap::visibility_franklin(shot.scene, view, lines).stats.counted("crossings_left_uncut");
+    EXPECT_EQ(segments_of(map_json(shot.scene, view, lines)), segments_of(json))
+        << shot.what << ": the lines alone differ from the whole map's";
   }
   EXPECT_GT(uncut, 1000) << "no crossing was left uncut";
+  EXPECT_GT(uncut_lines, 100) << "no crossing was left uncut in a lines-only drawing";
 }
 
 // ---- crease angles at the threshold ------------------------------------------------
