@@ -380,7 +380,8 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
   auto lower = [&](std::size_t g) -> const Vec3& { return vertex(std::min(group_edge(g).p, group_edge(g).q)); };
   auto higher = [&](std::size_t g) -> const Vec3& { return vertex(std::max(group_edge(g).p, group_edge(g).q)); };
   parallel_chunks(static_cast<int>(ngroups), 8192, threads, [&](int, Chunk r) {
-    for (auto g = static_cast<std::size_t>(r.begin); g < static_cast<std::size_t>(r.end); ++g) dir[g] = line_dir(lower(g), higher(g));
+    for (auto g = static_cast<std::size_t>(r.begin); g < static_cast<std::size_t>(r.end); ++g)
+      dir[g] = line_dir(lower(g), higher(g));
     auto line = [&](std::size_t i) {
       const std::size_t g = static_cast<std::size_t>(r.begin) + i;
       return std::tuple<const Vec3&, const Vec3&, int>(lower(g), higher(g), dir[g].axis);

@@ -1678,7 +1678,9 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
     if (cell.blocker >= 0) cutter.pierce(ci, cell.blocker);
   };
   const std::vector<DepthSpan> span = depth_spans(ss, threads);
-  auto is_apart = [&](int a, int b) { return apart(span[static_cast<std::size_t>(a)], span[static_cast<std::size_t>(b)]); };
+  auto is_apart = [&](int a, int b) {
+    return apart(span[static_cast<std::size_t>(a)], span[static_cast<std::size_t>(b)]);
+  };
   if (regions) {
     each_cell([&](Cutter& cutter, const Cell& cell) {
       const auto& cs = cell.curves;

@@ -316,8 +316,8 @@ bool any_box_pair(const std::vector<CGAL::Bbox_3>& boxes, const std::vector<Key>
     for (auto c = static_cast<std::size_t>(r.begin); c < static_cast<std::size_t>(r.end); ++c) {
       if (found.load(std::memory_order_relaxed)) return;
       if (start[c + 1] - start[c] < 2) continue;
-      const std::size_t at[3] = {c % static_cast<std::size_t>(g[0]), c / static_cast<std::size_t>(g[0]) % static_cast<std::size_t>(g[1]),
-                                 c / (static_cast<std::size_t>(g[0]) * static_cast<std::size_t>(g[1]))};
+      const auto gx = static_cast<std::size_t>(g[0]), gy = static_cast<std::size_t>(g[1]);
+      const std::size_t at[3] = {c % gx, c / gx % gy, c / (gx * gy)};   // (index()'s x, y, z)
       const auto first = member.begin() + start[c], last = member.begin() + start[c + 1];
       std::sort(first, last, [&](std::uint32_t i, std::uint32_t j) {
         return boxes[i].xmin() < boxes[j].xmin() || (boxes[i].xmin() == boxes[j].xmin() && i < j);
@@ -360,7 +360,8 @@ bool meets(const Fans& fans, int threads) {
     const Chunk r = chunk(c, n, size);
     for (int i = r.begin; i < r.end; ++i) {
       CGAL::Bbox_3 b;
-      for (const Vec3* p : tris[static_cast<std::size_t>(i)].corner) b += CGAL::Bbox_3(p->x, p->y, p->z, p->x, p->y, p->z);
+      for (const Vec3* p : tris[static_cast<std::size_t>(i)].corner)
+        b += CGAL::Bbox_3(p->x, p->y, p->z, p->x, p->y, p->z);
       out.push_back(b);
     }
   });
