@@ -245,20 +245,18 @@ inline Interval projected_interval(const ExactSource& source, std::uint32_t v, i
 // The interval of vertex v's W (row 3 of the view, unscaled), as the
 // perspective quotients divide by it: a vertex's three coordinates share it.
 inline Interval w_interval(const ExactSource& source, std::uint32_t v) {
-  std::pair<double, double> iw;
+  const Interval w = projected_interval(source, v, 3, false);
   // (W > 0: an interval reaching 0 would make the quotient's unbounded.)
-  if (!projected_bounds(source.m[3], (*source.vertices)[v], 0, iw.first, iw.second) || !(iw.first > 0))
-    iw = source.row_at(3, v, false).to_interval();
-  return Interval(iw.first, iw.second);
+  if (w.inf() > 0) return w;
+  const std::pair<double, double> exact = source.row_at(3, v, false).to_interval();
+  return Interval(exact.first, exact.second);
 }
 
 // The interval perspective_number's value has (w: w_interval(source, v)).
 inline Interval perspective_interval(const ExactSource& source, std::uint32_t v, int r, const Interval& w) {
-  std::pair<double, double> in;
-  if (!projected_bounds(source.m[static_cast<std::size_t>(r)], (*source.vertices)[v], source.k, in.first, in.second))
-    in = source.row_at(r, v, true).to_interval();
+  const Interval n = projected_interval(source, v, r, true);
   CGAL::Protect_FPU_rounding<true> upward;
-  return Interval(in.first, in.second) / w;
+  return n / w;
 }
 #endif
 
