@@ -133,7 +133,7 @@ void write_json(const VisibilityMap& map, const std::function<void(std::string)>
   // Each vertex's text once: most appear in several rings and segments. (Exact
   // decimals of rationals, the costliest part: chunks on `threads` threads.)
   std::vector<std::string> text(map.vertices.size());
-  engine::parallel_chunks(static_cast<int>(text.size()), 4096, threads, [&](int, engine::Chunk r) {
+  engine::parallel_chunks(static_cast<int>(text.size()), 512, threads, [&](int, engine::Chunk r) {
     for (int v = r.begin; v < r.end; ++v) point(text[v], map.vertices[v]);
   });
   out += "],\n";

@@ -6,6 +6,8 @@
 // connected component is placed in the face below its lowest-leftmost vertex by
 // one vertical ray. No segment intersection is ever computed.
 #include <algorithm>
+#include <atomic>
+#include <climits>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
@@ -49,34 +51,63 @@ CGAL::Comparison_result exact_compare_xy(const P2& a, const P2& b, const Interva
   return as_comparison(mpq_cmp(raw(ea.y()), raw(eb.y())));
 }
 
+// Each piece end's stand-in (2 * piece + 0 for its a, + 1 for its b): among
+// the ends with one name (MapPiece::ida, idb), the first in piece order; an
+// unnamed end stands for itself. (The first of each name found side by side on
+// the threads: the least of its ends, whichever thread sees it.)
+std::vector<int> stand_ins(const std::vector<MapPiece>& pieces, int threads) {
+  const int nends = 2 * static_cast<int>(pieces.size()), size = 16384;
+  auto name = [&](int at) { return at % 2 == 0 ? pieces[at / 2].ida : pieces[at / 2].idb; };
+  std::vector<int> most(static_cast<std::size_t>(engine::chunk_count(nends, size)), -1);
+  engine::parallel_chunks(nends, size, threads, [&](int c, engine::Chunk r) {
+    int m = -1;   // (stored once)
+    for (int at = r.begin; at < r.end; ++at) m = std::max(m, name(at));
+    most[static_cast<std::size_t>(c)] = m;
+  });
+  int names = 0;
+  for (const int m : most) names = std::max(names, m + 1);
+  std::vector<int> first(static_cast<std::size_t>(names), INT_MAX);
+  engine::parallel_chunks(nends, size, threads, [&](int, engine::Chunk r) {
+    for (int at = r.begin; at < r.end; ++at)
+      if (const int id = name(at); id >= 0) {
+        std::atomic_ref<int> f(first[static_cast<std::size_t>(id)]);
+        int seen = f.load(std::memory_order_relaxed);
+        while (at < seen && !f.compare_exchange_weak(seen, at, std::memory_order_relaxed)) {
+        }
+      }
+  });
+  std::vector<int> stand_in(static_cast<std::size_t>(nends));
+  engine::parallel_chunks(nends, size, threads, [&](int, engine::Chunk r) {
+    for (int at = r.begin; at < r.end; ++at) {
+      const int id = name(at);
+      stand_in[static_cast<std::size_t>(at)] = id >= 0 ? first[static_cast<std::size_t>(id)] : at;
+    }
+  });
+  return stand_in;
+}
+
 std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph& g, int threads) {
   struct End {   // (24 bytes: one per point named once, or per unnamed end)
     Interval x;   // sorts most pairs without touching the point
     int at;       // 2 * piece + (0: a, 1: b)
   };
-  auto point = [&](const End& e) -> const P2& { return e.at % 2 == 0 ? pieces[e.at / 2].a : pieces[e.at / 2].b; };
+  auto end_point = [&](int at) -> const P2& { return at % 2 == 0 ? pieces[at / 2].a : pieces[at / 2].b; };
+  auto point = [&](const End& e) -> const P2& { return end_point(e.at); };
   const int npieces = static_cast<int>(pieces.size());
   // Ends named by the engine (MapPiece::ida, idb) are sorted once per name: the
   // first end with each, in piece order, stands for the others (a 10^6-triangle
   // terrain's 3 M ends are 0.5 M vertices). Each end's stand-in, and the ends
   // that are sorted: the stand-ins and the unnamed ends, in piece order.
-  std::vector<int> stand_in(2 * pieces.size());
+  const std::vector<int> stand_in = stand_ins(pieces, threads);
   std::vector<End> ends;
   {
-    int names = 0;
-    for (const MapPiece& m : pieces) names = std::max({names, m.ida + 1, m.idb + 1});
-    std::vector<int> first_named(static_cast<std::size_t>(names), -1);
-    for (int at = 0; at < 2 * npieces; ++at) {
-      const MapPiece& m = pieces[at / 2];
-      const int id = at % 2 == 0 ? m.ida : m.idb;
-      if (id >= 0 && first_named[id] >= 0) {
-        stand_in[at] = first_named[id];
-        continue;
-      }
-      if (id >= 0) first_named[id] = at;
-      stand_in[at] = at;
-      ends.push_back(End{approx_point(at % 2 == 0 ? m.a : m.b).x(), at});
-    }
+    const int nends = 2 * npieces, size = 16384;
+    ends.reserve(static_cast<std::size_t>(nends));
+    engine::parallel_append(ends, engine::chunk_count(nends, size), threads, [&](int c, std::vector<End>& out) {
+      const engine::Chunk r = engine::chunk(c, nends, size);
+      for (int at = r.begin; at < r.end; ++at)
+        if (stand_in[at] == at) out.push_back(End{approx_point(end_point(at)).x(), at});
+    });
   }
   // A cheap number equal to end e's x, where the engine knows one (MapPiece::xa:
   // a vertex's x, or the x of the upright screen line its piece lies on), or
@@ -161,8 +192,13 @@ std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph
     for (int at = r.begin; at < r.end; ++at)
       if (stand_in[at] != at) vertex_of[at] = vertex_of[stand_in[at]];   // (a stand-in's own is set)
   });
-  g.approx.reserve(g.points.size());
-  for (const P2& p : g.points) g.approx.push_back(p.approx());
+  g.approx.resize(g.points.size());
+  engine::parallel_chunks(static_cast<int>(g.points.size()), 16384, threads, [&](int, engine::Chunk r) {
+    for (int w = r.begin; w < r.end; ++w) {
+      const auto k = static_cast<std::size_t>(w);
+      g.approx[k] = g.points[k].approx();
+    }
+  });
   return vertex_of;
 }
 
@@ -318,42 +354,84 @@ struct Columns {
 
   int column(double x) const { return std::clamp(static_cast<int>(std::floor((x - x0) / width)), 0, n - 1); }
 
-  explicit Columns(const MapGraph& g) {
-    const std::size_t E = g.ends.size();
+  // Each pass over the edges in parts on `threads` threads: the bounds and
+  // the totals per part, then added; the columns' edges counted per part and
+  // placed after the parts before (each column's edges in edge order, as one pass).
+  Columns(const MapGraph& g, int threads) {
+    const int E = static_cast<int>(g.ends.size()), nv = static_cast<int>(g.approx.size());
+    const int parts = std::max(1, std::min(threads, E / 16384));
+    auto part = [&](int k, int total) {   // (part k of [0, total))
+      auto at = [&](int j) { return static_cast<int>(static_cast<long>(total) * j / parts); };
+      return engine::Chunk{at(k), at(k + 1)};
+    };
+    std::vector<std::array<double, 2>> bounds(static_cast<std::size_t>(parts), {HUGE_VAL, -HUGE_VAL});
+    engine::parallel_for(parts, threads, [&](int k) {
+      double lo = HUGE_VAL, hi = -HUGE_VAL;   // (stored once)
+      const engine::Chunk r = part(k, nv);
+      for (int w = r.begin; w < r.end; ++w) {
+        lo = std::min(lo, g.approx[static_cast<std::size_t>(w)].x().inf());
+        hi = std::max(hi, g.approx[static_cast<std::size_t>(w)].x().sup());
+      }
+      bounds[static_cast<std::size_t>(k)] = {lo, hi};
+    });
     double lo = HUGE_VAL, hi = -HUGE_VAL;
-    for (const auto& p : g.approx) {
-      lo = std::min(lo, p.x().inf());
-      hi = std::max(hi, p.x().sup());
+    for (const auto& b : bounds) {
+      lo = std::min(lo, b[0]);
+      hi = std::max(hi, b[1]);
     }
     x0 = lo;
-    auto range = [&](std::size_t e, int& c0, int& c1) {
+    auto range = [&](int e, int& c0, int& c1) {
       c0 = column(g.approx[g.ends[e][0]].x().inf());
       c1 = column(g.approx[g.ends[e][1]].x().sup());
     };
+    std::vector<std::size_t> totals(static_cast<std::size_t>(parts));
     for (n = static_cast<int>(std::clamp(std::sqrt(static_cast<double>(E)), 1.0, 65536.0));; n = std::max(1, n / 4)) {
       width = hi > lo ? (hi - lo) / n : 1;
-      std::size_t total = 0;
-      for (std::size_t e = 0; e < E; ++e) {
+      engine::parallel_for(parts, threads, [&](int k) {
+        std::size_t total = 0;
+        const engine::Chunk r = part(k, E);
+        for (int e = r.begin; e < r.end; ++e) {
+          int c0, c1;
+          range(e, c0, c1);
+          total += static_cast<std::size_t>(c1 - c0 + 1);
+        }
+        totals[static_cast<std::size_t>(k)] = total;
+      });
+      const std::size_t total = std::accumulate(totals.begin(), totals.end(), std::size_t{0});
+      if (n == 1 || total <= 8 * static_cast<std::size_t>(E)) break;
+    }
+    // Per part: each column's count, then where the part's edges of it go.
+    std::vector<std::vector<int>> next(static_cast<std::size_t>(parts));
+    engine::parallel_for(parts, threads, [&](int k) {
+      std::vector<int> count(static_cast<std::size_t>(n), 0);
+      const engine::Chunk r = part(k, E);
+      for (int e = r.begin; e < r.end; ++e) {
         int c0, c1;
         range(e, c0, c1);
-        total += static_cast<std::size_t>(c1 - c0 + 1);
+        for (int c = c0; c <= c1; ++c) ++count[static_cast<std::size_t>(c)];
       }
-      if (n == 1 || total <= 8 * E) break;
-    }
+      next[static_cast<std::size_t>(k)] = std::move(count);
+    });
     first.assign(n + 1, 0);
-    for (std::size_t e = 0; e < E; ++e) {
-      int c0, c1;
-      range(e, c0, c1);
-      for (int c = c0; c <= c1; ++c) ++first[c + 1];
+    for (int c = 0; c < n; ++c) {
+      int at = first[c];
+      for (std::vector<int>& count : next) {
+        const int here = count[static_cast<std::size_t>(c)];
+        count[static_cast<std::size_t>(c)] = at;
+        at += here;
+      }
+      first[c + 1] = at;
     }
-    std::partial_sum(first.begin(), first.end(), first.begin());
-    edges.resize(first[n]);
-    std::vector<int> fill(first.begin(), first.end() - 1);
-    for (std::size_t e = 0; e < E; ++e) {
-      int c0, c1;
-      range(e, c0, c1);
-      for (int c = c0; c <= c1; ++c) edges[fill[c]++] = static_cast<int>(e);
-    }
+    edges.resize(static_cast<std::size_t>(first[n]));
+    engine::parallel_for(parts, threads, [&](int k) {
+      std::vector<int>& fill = next[static_cast<std::size_t>(k)];
+      const engine::Chunk r = part(k, E);
+      for (int e = r.begin; e < r.end; ++e) {
+        int c0, c1;
+        range(e, c0, c1);
+        for (int c = c0; c <= c1; ++c) edges[static_cast<std::size_t>(fill[static_cast<std::size_t>(c)]++)] = e;
+      }
+    });
   }
 };
 
@@ -483,20 +561,29 @@ void trace_faces(MapGraph& g, int threads) {
 
   // Components, each with its lowest-leftmost vertex (the smallest number) and
   // its outer cycle: the one whose face holds the directions to the left there.
-  UnionFind comp(g.points.size());
-  for (const auto& [u, v] : g.ends) comp.join(u, v);
-  std::vector<int> outer_cycles;   // per component, in order of their lowest vertex
-  std::vector<int> lowest;
-  std::vector<char> seen(g.points.size(), 0);
-  for (int w = 0; w < a.nverts; ++w) {
-    const int r = comp.find(w);
-    if (seen[r]) continue;
-    seen[r] = 1;
-    const int c = a.cycle[a.halfedge_before(w, false)];
-    if (a.positive[c]) broken("a component whose outside turns counter-clockwise");
-    outer_cycles.push_back(c);
-    lowest.push_back(w);
-  }
+  // (Joined on the threads: each component's root is then its least vertex.)
+  ConcurrentUnionFind comp(g.points.size());
+  const int nedges = static_cast<int>(g.ends.size());
+  engine::parallel_chunks(nedges, 16384, threads, [&](int, engine::Chunk r) {
+    for (int e = r.begin; e < r.end; ++e) {
+      const auto& [u, v] = g.ends[static_cast<std::size_t>(e)];
+      comp.join(u, v);
+    }
+  });
+  std::vector<int> lowest;   // in vertex order
+  engine::parallel_append(lowest, engine::chunk_count(a.nverts, 16384), threads, [&](int k, std::vector<int>& out) {
+    const engine::Chunk r = engine::chunk(k, a.nverts, 16384);
+    for (int w = r.begin; w < r.end; ++w)
+      if (comp.find(w) == w) out.push_back(w);
+  });
+  std::vector<int> outer_cycles(lowest.size());   // per component, in order of their lowest vertex
+  engine::parallel_chunks(static_cast<int>(lowest.size()), 16384, threads, [&](int, engine::Chunk r) {
+    for (int k = r.begin; k < r.end; ++k) {
+      const int c = a.cycle[a.halfedge_before(lowest[static_cast<std::size_t>(k)], false)];
+      if (a.positive[c]) broken("a component whose outside turns counter-clockwise");
+      outer_cycles[static_cast<std::size_t>(k)] = c;
+    }
+  });
   const std::size_t ncycles = a.positive.size();
   const std::size_t npositive = static_cast<std::size_t>(std::count(a.positive.begin(), a.positive.end(), 1));
   if (ncycles - npositive != outer_cycles.size()) broken("pieces crossing between their end points");
@@ -510,7 +597,7 @@ void trace_faces(MapGraph& g, int threads) {
     if (a.positive[c]) face_of[c] = g.faces++;
   g.unbounded = g.faces++;
   if (!outer_cycles.empty()) {
-    const Columns cols(g);
+    const Columns cols(g, threads);
     const int ncomp = static_cast<int>(outer_cycles.size());
     std::vector<int> below(outer_cycles.size());   // the rays in parallel, the faces in order
     engine::parallel_chunks(ncomp, 256, threads, [&](int, engine::Chunk r) {

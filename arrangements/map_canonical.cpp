@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <atomic>
 #include <climits>
 #include <numeric>
 #include <stdexcept>
@@ -33,35 +34,49 @@ void rotate_canonical(std::vector<int>& ring) {
 // Vertices of the arrangement that are vertices of the canonical map: where
 // other than two edges meet, or two that differ or bend (an edge that is not
 // drawn and has the same face on both sides is no edge of the arrangement: it
-// only kept a farther line from being drawn). `two`: a vertex's first two edges.
+// only kept a farther line from being drawn). `two`: where a vertex has two
+// edges, those two (in either order: every use takes them as a pair).
 struct Essential {
   std::vector<char> essential;
   std::vector<int> two;
 };
-Essential essential_vertices(const MapGraph& g) {
+Essential essential_vertices(const MapGraph& g, int threads) {
   const int nedges = static_cast<int>(g.ends.size()), nverts = static_cast<int>(g.points.size());
   auto inert = [&](int e) { return !g.attrs[e].drawn && g.attrs[e].left == g.attrs[e].right; };
   std::vector<int> degree(nverts, 0);
   Essential out;
   out.two.assign(2 * static_cast<std::size_t>(nverts), -1);
-  for (int e = 0; e < nedges; ++e)
-    if (!inert(e))
-      for (int w : g.ends[e]) {
-        if (degree[w] < 2) out.two[2 * w + degree[w]] = e;
-        ++degree[w];
-      }
+  // Each vertex's edges counted, its first two kept (by whichever thread comes first).
+  engine::parallel_chunks(nedges, 16384, threads, [&](int, engine::Chunk r) {
+    for (int e = r.begin; e < r.end; ++e)
+      if (!inert(e))
+        for (int w : g.ends[e])
+          if (const int k = std::atomic_ref<int>(degree[w]).fetch_add(1, std::memory_order_relaxed); k < 2)
+            out.two[2 * static_cast<std::size_t>(w) + static_cast<std::size_t>(k)] = e;
+  });
   auto other_end = [&](int e, int w) { return g.ends[e][0] == w ? g.ends[e][1] : g.ends[e][0]; };
-  // A vertex where two collinear edges of the same attributes meet is not a vertex.
+  // A vertex where two collinear edges of the same attributes meet is not a
+  // vertex. (Pieces of one curve are collinear by construction: the exact zero
+  // that no filter settles is then never asked.) Where only the points can tell,
+  // they are asked afterwards, in vertex order on one thread: a lazy point's
+  // interval narrows once its exact value is made, so the order decides which
+  // later predicates need one, and the counts must not depend on the threads.
   out.essential.assign(nverts, 1);
+  std::vector<char> ask(static_cast<std::size_t>(nverts), 0);
+  engine::parallel_chunks(nverts, 16384, threads, [&](int, engine::Chunk r) {
+    for (int w = r.begin; w < r.end; ++w)
+      if (degree[w] == 2) {
+        const EdgeAttr &a1 = g.attrs[out.two[2 * w]], &a2 = g.attrs[out.two[2 * w + 1]];
+        if (!a1.same_as(a2)) continue;
+        if (a1.line >= 0 && a1.line == a2.line) out.essential[w] = 0;
+        else ask[w] = 1;
+      }
+  });
   for (int w = 0; w < nverts; ++w)
-    if (degree[w] == 2) {
+    if (ask[w]) {   // (the orientation's sign does not depend on which edge is the first)
       const int e1 = out.two[2 * w], e2 = out.two[2 * w + 1];
-      // (Pieces of one curve are collinear by construction: the exact zero that
-      // no filter settles is then never asked.)
-      out.essential[w] = !(g.attrs[e1].same_as(g.attrs[e2]) &&
-                           ((g.attrs[e1].line >= 0 && g.attrs[e1].line == g.attrs[e2].line) ||
-                            CGAL::orientation(g.points[other_end(e1, w)], g.points[w], g.points[other_end(e2, w)]) ==
-                                CGAL::COLLINEAR));
+      out.essential[w] =
+          CGAL::orientation(g.points[other_end(e1, w)], g.points[w], g.points[other_end(e2, w)]) != CGAL::COLLINEAR;
     }
   return out;
 }
@@ -82,21 +97,29 @@ Point2 exact_point(const MapGraph& g, int w) {
 struct Chain {
   int from, to, edge;
 };
-std::vector<Chain> drawn_chains(const MapGraph& g, const Essential& ess, std::vector<char>& written) {
+std::vector<Chain> drawn_chains(const MapGraph& g, const Essential& ess, std::vector<char>& written, int threads) {
   auto target = [&](int h) { return g.ends[h >> 1][(h & 1) ^ 1]; };
+  auto mark = [&](int w) {
+    std::atomic_ref<char>(written[static_cast<std::size_t>(w)]).store(1, std::memory_order_relaxed);
+  };
+  const int nedges = static_cast<int>(g.ends.size()), size = 16384;
   std::vector<Chain> chains;
-  for (int e = 0; e < static_cast<int>(g.ends.size()); ++e) {
-    const EdgeAttr& a = g.attrs[e];
-    if (!a.drawn || !ess.essential[g.ends[e][0]]) continue;   // hidden, or not the start of its chain
-    int cur = 2 * e;
-    while (!ess.essential[target(cur)]) {
-      const int w = target(cur), here = cur >> 1;
-      const int o = ess.two[2 * w] == here ? ess.two[2 * w + 1] : ess.two[2 * w];
-      cur = g.ends[o][0] == w ? 2 * o : 2 * o + 1;
+  engine::parallel_append(chains, engine::chunk_count(nedges, size), threads, [&](int c, std::vector<Chain>& out) {
+    const engine::Chunk r = engine::chunk(c, nedges, size);
+    for (int e = r.begin; e < r.end; ++e) {
+      const EdgeAttr& a = g.attrs[e];
+      if (!a.drawn || !ess.essential[g.ends[e][0]]) continue;   // hidden, or not the start of its chain
+      int cur = 2 * e;
+      while (!ess.essential[target(cur)]) {
+        const int w = target(cur), here = cur >> 1;
+        const int o = ess.two[2 * w] == here ? ess.two[2 * w + 1] : ess.two[2 * w];
+        cur = g.ends[o][0] == w ? 2 * o : 2 * o + 1;
+      }
+      out.push_back(Chain{g.ends[e][0], target(cur), e});
+      mark(g.ends[e][0]);
+      mark(target(cur));
     }
-    chains.push_back(Chain{g.ends[e][0], target(cur), e});
-    written[g.ends[e][0]] = written[target(cur)] = 1;
-  }
+  });
   return chains;
 }
 
@@ -107,15 +130,20 @@ std::vector<Chain> drawn_chains(const MapGraph& g, const Essential& ess, std::ve
 // are lazy points evaluated here for the first time).
 std::vector<std::uint32_t> write_vertices(const MapGraph& g, const std::vector<char>& written, VisibilityMap& map,
                                           int threads) {
-  std::vector<std::uint32_t> index(g.points.size(), 0);
+  const int nverts = static_cast<int>(g.points.size());
   std::vector<int> at;   // the written vertices, in order
-  for (std::size_t w = 0; w < g.points.size(); ++w)
-    if (written[w]) {
-      index[w] = static_cast<std::uint32_t>(at.size());
-      at.push_back(static_cast<int>(w));
-    }
+  engine::parallel_append(at, engine::chunk_count(nverts, 16384), threads, [&](int k, std::vector<int>& out) {
+    const engine::Chunk r = engine::chunk(k, nverts, 16384);
+    for (int w = r.begin; w < r.end; ++w)
+      if (written[static_cast<std::size_t>(w)]) out.push_back(w);
+  });
+  std::vector<std::uint32_t> index(g.points.size(), 0);
+  engine::parallel_chunks(static_cast<int>(at.size()), 16384, threads, [&](int, engine::Chunk r) {
+    for (int i = r.begin; i < r.end; ++i)
+      index[static_cast<std::size_t>(at[static_cast<std::size_t>(i)])] = static_cast<std::uint32_t>(i);
+  });
   map.vertices.resize(at.size());
-  const int n = static_cast<int>(at.size()), size = 4096;
+  const int n = static_cast<int>(at.size()), size = 512;   // (~1 us a vertex: chunks that share out evenly)
   engine::parallel_chunks(n, size, threads, [&](int, engine::Chunk r) {
     for (int i = r.begin; i < r.end; ++i)
       map.vertices[static_cast<std::size_t>(i)] = exact_point(g, at[static_cast<std::size_t>(i)]);
@@ -130,14 +158,17 @@ void write_segments(const MapGraph& g, std::vector<Chain> chains, const std::vec
   engine::parallel_sort(chains.begin(), chains.end(), [](const Chain& a, const Chain& b) {
     return std::tuple(a.from, a.to, a.edge) < std::tuple(b.from, b.to, b.edge);
   }, threads);
-  map.segments.reserve(chains.size());
-  for (std::size_t i = 0; i < chains.size(); ++i) {
-    // The faces lists lie with the engine's curves, in another order: fetch ahead.
-    if (i + 16 < chains.size()) __builtin_prefetch(g.attrs[chains[i + 16].edge].faces);
-    const Chain& c = chains[i];
-    const FacesList& faces = *g.attrs[c.edge].faces;
-    map.segments.push_back(Segment{index[c.from], index[c.to], g.attrs[c.edge].kind, {faces.begin(), faces.end()}});
-  }
+  map.segments.resize(chains.size());
+  engine::parallel_chunks(static_cast<int>(chains.size()), 4096, threads, [&](int, engine::Chunk r) {
+    for (int i = r.begin; i < r.end; ++i) {
+      // The faces lists lie with the engine's curves, in another order: fetch ahead.
+      if (i + 16 < r.end) __builtin_prefetch(g.attrs[chains[static_cast<std::size_t>(i) + 16].edge].faces);
+      const Chain& c = chains[static_cast<std::size_t>(i)];
+      const FacesList& faces = *g.attrs[c.edge].faces;
+      map.segments[static_cast<std::size_t>(i)] =
+          Segment{index[c.from], index[c.to], g.attrs[c.edge].kind, {faces.begin(), faces.end()}};
+    }
+  });
 }
 
 // The ring of boundary halfedges from h0 (succ: the next one along its
@@ -262,7 +293,7 @@ void write_canonical(const MapGraph& g, VisibilityMap& map, int threads) {
     else if (l != x) throw std::logic_error("visibility map: inconsistent face labels (engine bug)");
   }
 
-  const Essential ess = essential_vertices(g);
+  const Essential ess = essential_vertices(g, threads);
   std::vector<char> written(nverts, 0);
 
   // Regions: faces of one label joined across edges that separate nothing.
@@ -305,7 +336,7 @@ void write_canonical(const MapGraph& g, VisibilityMap& map, int threads) {
     if (a.face != b.face) return a.face < b.face;
     return a.outer < b.outer;
   }, threads);
-  std::vector<Chain> chains = drawn_chains(g, ess, written);
+  std::vector<Chain> chains = drawn_chains(g, ess, written, threads);
   const std::vector<std::uint32_t> index = write_vertices(g, written, map, threads);
   auto ring_of = [&](const std::vector<int>& ids) {
     Ring out;
@@ -329,7 +360,7 @@ void write_canonical(const MapGraph& g, VisibilityMap& map, int threads) {
 
 void write_segments_only(const MapGraph& g, VisibilityMap& map, int threads) {
   std::vector<char> written(g.points.size(), 0);
-  const std::vector<Chain> chains = drawn_chains(g, essential_vertices(g), written);
+  const std::vector<Chain> chains = drawn_chains(g, essential_vertices(g, threads), written, threads);
   write_segments(g, chains, write_vertices(g, written, map, threads), map, threads);
   map.has_regions = false;
 }

@@ -1,6 +1,7 @@
 #include "engine/culling.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <numeric>
 
@@ -46,27 +47,40 @@ void drop_meeting_themselves(const Scene& scene, const WorldFacets& wf, const st
 
 ClosedComponents closed_components(const Scene& scene, const WorldFacets& wf, const std::vector<WorldPiece>& pieces,
                                    int threads) {
-  const int n = static_cast<int>(wf.facets.size());
-  UnionFind uf(static_cast<std::size_t>(n));
-  // A piece closes the surface when exactly two facets share it, traversing it in
-  // opposite directions (consistent orientation).
-  std::vector<char> good(pieces.size());
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    const auto& s = pieces[i].sharers;
-    good[i] = s.size() == 2 && s[0].forward != s[1].forward;
-    for (std::size_t k = 1; k < s.size(); ++k) uf.join(s[0].facet, s[k].facet);
-  }
+  const int n = static_cast<int>(wf.facets.size()), np = static_cast<int>(pieces.size());
+  // (Joined on the threads: a component's number is then its first facet.)
+  ConcurrentUnionFind uf(static_cast<std::size_t>(n));
+  parallel_chunks(np, 16384, threads, [&](int, Chunk r) {
+    for (int i = r.begin; i < r.end; ++i) {
+      const auto& s = pieces[static_cast<std::size_t>(i)].sharers;
+      for (std::size_t k = 1; k < s.size(); ++k) uf.join(s[0].facet, s[k].facet);
+    }
+  });
   // Each facet's component, once (the loops below read it on several threads).
   std::vector<int> comp(static_cast<std::size_t>(n));
-  for (int f = 0; f < n; ++f) comp[f] = uf.find(f);
+  parallel_chunks(n, 16384, threads, [&](int, Chunk r) {
+    for (int f = r.begin; f < r.end; ++f) comp[f] = uf.find(f);
+  });
   std::vector<char> closed(n, 1);
-  for (std::size_t i = 0; i < pieces.size(); ++i)
-    if (!good[i]) for (const auto& s : pieces[i].sharers) closed[comp[s.facet]] = 0;
+  auto open = [&](int f) {
+    std::atomic_ref<char>(closed[static_cast<std::size_t>(comp[f])]).store(0, std::memory_order_relaxed);
+  };
+  // A piece closes the surface when exactly two facets share it, traversing it in
+  // opposite directions (consistent orientation).
+  parallel_chunks(np, 16384, threads, [&](int, Chunk r) {
+    for (int i = r.begin; i < r.end; ++i) {
+      const auto& s = pieces[static_cast<std::size_t>(i)].sharers;
+      if (!(s.size() == 2 && s[0].forward != s[1].forward))
+        for (const auto& sharer : s) open(sharer.facet);
+    }
+  });
   // A non-planar polygon's fan can fold over the polygon's own edge, and a face
   // never hides its own edges (spec: "some face g not sharing e"): an edge between
   // two back-facing pieces may then be visible. Such components are not culled.
-  for (int f = 0; f < n; ++f)
-    if (!wf.facets[f].planar) closed[comp[f]] = 0;
+  parallel_chunks(n, 16384, threads, [&](int, Chunk r) {
+    for (int f = r.begin; f < r.end; ++f)
+      if (!wf.facets[f].planar) open(f);
+  });
   drop_meeting_themselves(scene, wf, comp, closed, threads);
   ClosedComponents cc;
   cc.side.assign(n, 0);

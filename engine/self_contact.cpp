@@ -279,25 +279,38 @@ bool any_box_pair(const std::vector<CGAL::Bbox_3>& boxes, const std::vector<Key>
     int lo[3], hi[3];
   };
   std::vector<Cells> range(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const CGAL::Bbox_3& b = boxes[i];
-    for (int k = 0; k < 3; ++k) {
-      range[i].lo[k] = cell(k, b.min(k));
-      range[i].hi[k] = cell(k, b.max(k));
+  parallel_chunks(static_cast<int>(n), 16384, threads, [&](int, Chunk r) {
+    for (auto i = static_cast<std::size_t>(r.begin); i < static_cast<std::size_t>(r.end); ++i) {
+      const CGAL::Bbox_3& b = boxes[i];
+      for (int k = 0; k < 3; ++k) {
+        range[i].lo[k] = cell(k, b.min(k));
+        range[i].hi[k] = cell(k, b.max(k));
+      }
     }
-  }
+  });
   auto for_cells = [&](const Cells& r, auto&& visit) {
     for (int z = r.lo[2]; z <= r.hi[2]; ++z)
       for (int y = r.lo[1]; y <= r.hi[1]; ++y)
         for (int x = r.lo[0]; x <= r.hi[0]; ++x) visit(index(x, y, z));
   };
   const std::size_t cells = static_cast<std::size_t>(g[0]) * g[1] * g[2];
+  // Each cell's boxes, counted and placed on the threads (in whatever order:
+  // each cell's are sorted below).
+  auto take = [](std::uint32_t& k) {
+    return std::atomic_ref<std::uint32_t>(k).fetch_add(1, std::memory_order_relaxed);
+  };
   std::vector<std::uint32_t> start(cells + 1, 0);
-  for (const Cells& r : range) for_cells(r, [&](std::size_t c) { ++start[c + 1]; });
+  parallel_chunks(static_cast<int>(n), 16384, threads, [&](int, Chunk r) {
+    for (int i = r.begin; i < r.end; ++i)
+      for_cells(range[static_cast<std::size_t>(i)], [&](std::size_t c) { take(start[c + 1]); });
+  });
   for (std::size_t c = 1; c <= cells; ++c) start[c] += start[c - 1];
   std::vector<std::uint32_t> fill(start.begin(), start.end() - 1), member(start.back());
-  for (std::size_t i = 0; i < n; ++i)
-    for_cells(range[i], [&](std::size_t c) { member[fill[c]++] = static_cast<std::uint32_t>(i); });
+  parallel_chunks(static_cast<int>(n), 16384, threads, [&](int, Chunk r) {
+    for (int i = r.begin; i < r.end; ++i)
+      for_cells(range[static_cast<std::size_t>(i)],
+                [&](std::size_t c) { member[take(fill[c])] = static_cast<std::uint32_t>(i); });
+  });
   // In each cell, its boxes by their lower x: a box meets only those after it
   // that start before it ends. (Copied side by side first, with their keys and
   // whether each starts in this cell along each axis: a pair's home is this
