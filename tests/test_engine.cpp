@@ -16,6 +16,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "arrangements/json_writer.h"
@@ -23,6 +24,7 @@
 #include "engine/franklin_grid.h"
 #include "engine/lazy_leaves.h"
 #include "engine/parallel.h"
+#include "engine/union_find.h"
 #include "engine/world_exact.h"
 #include "engine/visibility.h"
 #include "tests/run_child.h"
@@ -712,6 +714,41 @@ TEST(Threads, SameMapForEveryThreadCount) {
             << "view " << v << (regions ? "" : ", lines only") << ": " << threads << " threads differ from one";
       }
     }
+  }
+}
+
+// Sets joined from four threads at once: each element's root is the least member
+// of its set (the components' numbers and lowest vertices rely on it), the sets
+// those of the same joins made one by one.
+TEST(Threads, ConcurrentUnionFindRootsAreTheLeastMembers) {
+  constexpr int kN = 20000, kJoins = 15000, kThreads = 4;
+  std::mt19937 rng(1129);
+  std::vector<std::pair<int, int>> joins(kJoins);
+  for (auto& [a, b] : joins) {
+    a = static_cast<int>(rng() % kN);
+    b = static_cast<int>(rng() % kN);
+  }
+  vismap::UnionFind one(kN);
+  for (const auto& [a, b] : joins) one.join(a, b);
+  std::vector<int> least(kN, kN);
+  for (int x = 0; x < kN; ++x) {
+    int& l = least[static_cast<std::size_t>(one.find(x))];
+    l = std::min(l, x);
+  }
+  for (int round = 0; round < 5; ++round) {
+    vismap::ConcurrentUnionFind many(kN);
+    std::vector<std::thread> threads;
+    for (int t = 0; t < kThreads; ++t)
+      threads.emplace_back([&, t] {
+        for (int i = t; i < kJoins; i += kThreads) {
+          const auto& [a, b] = joins[static_cast<std::size_t>(i)];
+          many.join(a, b);
+        }
+      });
+    for (std::thread& t : threads) t.join();
+    int wrong = 0;
+    for (int x = 0; x < kN; ++x) wrong += many.find(x) != least[static_cast<std::size_t>(one.find(x))];
+    EXPECT_EQ(wrong, 0) << "round " << round;
   }
 }
 
