@@ -4,8 +4,8 @@
 #pragma once
 #include <atomic>
 #include <cstddef>
-#include <utility>
 #include <numeric>
+#include <utility>
 #include <vector>
 
 namespace vismap {
