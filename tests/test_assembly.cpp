@@ -136,6 +136,50 @@ TEST(Assembly, SameMapAsTheSweepOnRandomDegenerateSegments) {
   EXPECT_GT(with_holes, 150);
 }
 
+// The assembly's passes run in chunks and parts on the threads (the ends'
+// stand-ins, the components' union-find, the vertical rays' columns, the
+// essential vertices, the chains): the map is the one of one thread. Thousands
+// of small components (squares, some with a bar inside: a component in a face),
+// enough edges for every part, half the ends named by their vertex.
+TEST(Assembly, SameMapOnEveryThreadCount) {
+  std::mt19937 rng(1130);
+  std::vector<std::array<int, 4>> segments;
+  for (int i = 0; i < 110; ++i)
+    for (int j = 0; j < 110; ++j) {
+      const int x = 10 * i + static_cast<int>(rng() % 3), y = 10 * j + static_cast<int>(rng() % 3);
+      segments.push_back({x, y, x + 6, y});
+      segments.push_back({x + 6, y, x + 6, y + 6});
+      segments.push_back({x + 6, y + 6, x, y + 6});
+      segments.push_back({x, y + 6, x, y});
+      if (rng() % 3 == 0) segments.push_back({x + 1, y + 3, x + 5, y + 3});
+    }
+  PieceSet set = pieces_of(segments, rng);
+  ASSERT_GT(set.pieces.size(), 3u * 16384u);   // (every thread count below gets parts of its own)
+  std::map<std::pair<double, double>, int> name;
+  auto id = [&](const P2& p) {
+    const std::pair<double, double> at(CGAL::to_double(p.x()), CGAL::to_double(p.y()));   // (small integers: exact)
+    return name.emplace(at, static_cast<int>(name.size())).first->second;
+  };
+  for (MapPiece& m : set.pieces)
+    if (rng() % 2 == 0) {
+      m.ida = id(m.a);
+      m.idb = id(m.b);
+    }
+  std::string one;
+  for (int threads : {1, 2, 3}) {
+    std::vector<MapPiece> copy = set.pieces;
+    VisibilityMap map;
+    ASSERT_NO_THROW(assemble_map(copy, map, threads)) << threads << " threads";
+    if (threads == 1) {
+      EXPECT_GT(map.regions.size(), 5000u);
+      EXPECT_GT(map.segments.size(), 20000u);
+      one = json_of(map);
+    } else {
+      EXPECT_EQ(json_of(map), one) << threads << " threads";
+    }
+  }
+}
+
 TEST(Assembly, EmptyInputGivesAnEmptyMap) {
   std::vector<MapPiece> none;
   VisibilityMap m;
