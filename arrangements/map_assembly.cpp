@@ -350,24 +350,16 @@ struct Assembly {
 struct Columns {
   double x0 = 0, width = 1;
   int n = 1;
-  std::vector<int> first, edges;
+  engine::Buckets edges;   // each column's edges, in edge order
 
   int column(double x) const { return std::clamp(static_cast<int>(std::floor((x - x0) / width)), 0, n - 1); }
 
-  // Each pass over the edges in parts on `threads` threads: the bounds and
-  // the totals per part, then added; the columns' edges counted per part and
-  // placed after the parts before (each column's edges in edge order, as one pass).
+  // (The bounds and the totals in parts on `threads` threads, then added.)
   Columns(const MapGraph& g, int threads) {
-    const int E = static_cast<int>(g.ends.size()), nv = static_cast<int>(g.approx.size());
-    const int parts = std::max(1, std::min(threads, E / 16384));
-    auto part = [&](int k, int total) {   // (part k of [0, total))
-      auto at = [&](int j) { return static_cast<int>(static_cast<long>(total) * j / parts); };
-      return engine::Chunk{at(k), at(k + 1)};
-    };
-    std::vector<std::array<double, 2>> bounds(static_cast<std::size_t>(parts), {HUGE_VAL, -HUGE_VAL});
-    engine::parallel_for(parts, threads, [&](int k) {
+    const int E = static_cast<int>(g.ends.size()), nv = static_cast<int>(g.approx.size()), size = 16384;
+    std::vector<std::array<double, 2>> bounds(static_cast<std::size_t>(engine::chunk_count(nv, size)));
+    engine::parallel_chunks(nv, size, threads, [&](int k, engine::Chunk r) {
       double lo = HUGE_VAL, hi = -HUGE_VAL;   // (stored once)
-      const engine::Chunk r = part(k, nv);
       for (int w = r.begin; w < r.end; ++w) {
         lo = std::min(lo, g.approx[static_cast<std::size_t>(w)].x().inf());
         hi = std::max(hi, g.approx[static_cast<std::size_t>(w)].x().sup());
@@ -380,58 +372,22 @@ struct Columns {
       hi = std::max(hi, b[1]);
     }
     x0 = lo;
-    auto range = [&](int e, int& c0, int& c1) {
-      c0 = column(g.approx[g.ends[e][0]].x().inf());
-      c1 = column(g.approx[g.ends[e][1]].x().sup());
+    auto each_column = [&](int e, auto&& visit) {
+      const int c0 = column(g.approx[g.ends[e][0]].x().inf()), c1 = column(g.approx[g.ends[e][1]].x().sup());
+      for (int c = c0; c <= c1; ++c) visit(static_cast<std::size_t>(c));
     };
-    std::vector<std::size_t> totals(static_cast<std::size_t>(parts));
+    std::vector<std::size_t> totals(static_cast<std::size_t>(engine::chunk_count(E, size)));
     for (n = static_cast<int>(std::clamp(std::sqrt(static_cast<double>(E)), 1.0, 65536.0));; n = std::max(1, n / 4)) {
       width = hi > lo ? (hi - lo) / n : 1;
-      engine::parallel_for(parts, threads, [&](int k) {
+      engine::parallel_chunks(E, size, threads, [&](int k, engine::Chunk r) {
         std::size_t total = 0;
-        const engine::Chunk r = part(k, E);
-        for (int e = r.begin; e < r.end; ++e) {
-          int c0, c1;
-          range(e, c0, c1);
-          total += static_cast<std::size_t>(c1 - c0 + 1);
-        }
+        for (int e = r.begin; e < r.end; ++e) each_column(e, [&](std::size_t) { ++total; });
         totals[static_cast<std::size_t>(k)] = total;
       });
       const std::size_t total = std::accumulate(totals.begin(), totals.end(), std::size_t{0});
       if (n == 1 || total <= 8 * static_cast<std::size_t>(E)) break;
     }
-    // Per part: each column's count, then where the part's edges of it go.
-    std::vector<std::vector<int>> next(static_cast<std::size_t>(parts));
-    engine::parallel_for(parts, threads, [&](int k) {
-      std::vector<int> count(static_cast<std::size_t>(n), 0);
-      const engine::Chunk r = part(k, E);
-      for (int e = r.begin; e < r.end; ++e) {
-        int c0, c1;
-        range(e, c0, c1);
-        for (int c = c0; c <= c1; ++c) ++count[static_cast<std::size_t>(c)];
-      }
-      next[static_cast<std::size_t>(k)] = std::move(count);
-    });
-    first.assign(n + 1, 0);
-    for (int c = 0; c < n; ++c) {
-      int at = first[c];
-      for (std::vector<int>& count : next) {
-        const int here = count[static_cast<std::size_t>(c)];
-        count[static_cast<std::size_t>(c)] = at;
-        at += here;
-      }
-      first[c + 1] = at;
-    }
-    edges.resize(static_cast<std::size_t>(first[n]));
-    engine::parallel_for(parts, threads, [&](int k) {
-      std::vector<int>& fill = next[static_cast<std::size_t>(k)];
-      const engine::Chunk r = part(k, E);
-      for (int e = r.begin; e < r.end; ++e) {
-        int c0, c1;
-        range(e, c0, c1);
-        for (int c = c0; c <= c1; ++c) edges[static_cast<std::size_t>(fill[static_cast<std::size_t>(c)]++)] = e;
-      }
-    });
+    edges = engine::bucket_items(E, static_cast<std::size_t>(n), threads, each_column);
   }
 };
 
@@ -469,8 +425,8 @@ int face_below(const Assembly& a, const Columns& cols, int w) {
   };
   const int c0 = cols.column(px.inf()), c1 = cols.column(px.sup());
   for (int c = c0; c <= c1; ++c)
-    for (int k = cols.first[c]; k < cols.first[c + 1]; ++k) {
-      const int e = cols.edges[k];
+    for (std::uint32_t k = cols.edges.first[c]; k < cols.edges.first[c + 1]; ++k) {
+      const int e = static_cast<int>(cols.edges.items[k]);
       if (e == best_edge) continue;   // listed in both columns
       const int iu = g.ends[e][0], iv = g.ends[e][1];
       const P2 &u = g.points[iu], &v = g.points[iv];

@@ -15,6 +15,7 @@
 #pragma once
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <exception>
 #include <iterator>
 #include <mutex>
@@ -136,6 +137,50 @@ inline Chunk chunk(int k, int n, int size) { return {k * size, std::min(n, (k + 
 template <class Body>
 void parallel_chunks(int n, int size, int threads, Body&& body) {
   parallel_for(chunk_count(n, size), threads, [&](int k) { body(k, chunk(k, n, size)); });
+}
+
+// Items [0, n) listed by bucket, in compressed rows: each_bucket(i, visit)
+// calls visit(b) for each bucket b item i goes in. A bucket lists its items in
+// item order, as one pass would; parts of the items are counted, then placed,
+// side by side on `threads` threads, each part's items after the parts' before.
+struct Buckets {
+  std::vector<std::uint32_t> first;   // bucket b's items: items[first[b] .. first[b + 1])
+  std::vector<std::uint32_t> items;
+};
+template <class EachBucket>
+Buckets bucket_items(int n, std::size_t buckets, int threads, EachBucket&& each_bucket) {
+  const int parts = std::max(1, std::min(threads, n / 16384));
+  auto part = [&](int k) {
+    auto at = [&](int j) { return static_cast<int>(static_cast<long>(n) * j / parts); };
+    return Chunk{at(k), at(k + 1)};
+  };
+  // Per part: each bucket's count, then where the part's next item in it goes.
+  std::vector<std::vector<std::uint32_t>> next(static_cast<std::size_t>(parts));
+  parallel_for(parts, threads, [&](int k) {
+    std::vector<std::uint32_t> count(buckets, 0);
+    const Chunk r = part(k);
+    for (int i = r.begin; i < r.end; ++i) each_bucket(i, [&](std::size_t b) { ++count[b]; });
+    next[static_cast<std::size_t>(k)] = std::move(count);
+  });
+  Buckets out;
+  out.first.assign(buckets + 1, 0);
+  for (std::size_t b = 0; b < buckets; ++b) {
+    std::uint32_t at = out.first[b];
+    for (std::vector<std::uint32_t>& count : next) {
+      const std::uint32_t here = count[b];
+      count[b] = at;
+      at += here;
+    }
+    out.first[b + 1] = at;
+  }
+  out.items.resize(out.first[buckets]);
+  parallel_for(parts, threads, [&](int k) {
+    std::vector<std::uint32_t>& at = next[static_cast<std::size_t>(k)];
+    const Chunk r = part(k);
+    for (int i = r.begin; i < r.end; ++i)
+      each_bucket(i, [&](std::size_t b) { out.items[at[b]++] = static_cast<std::uint32_t>(i); });
+  });
+  return out;
 }
 
 // Frees v's items on `threads` threads, then v: each item is moved out and

@@ -294,23 +294,11 @@ bool any_box_pair(const std::vector<CGAL::Bbox_3>& boxes, const std::vector<Key>
         for (int x = r.lo[0]; x <= r.hi[0]; ++x) visit(index(x, y, z));
   };
   const std::size_t cells = static_cast<std::size_t>(g[0]) * g[1] * g[2];
-  // Each cell's boxes, counted and placed on the threads (in whatever order:
-  // each cell's are sorted below).
-  auto take = [](std::uint32_t& k) {
-    return std::atomic_ref<std::uint32_t>(k).fetch_add(1, std::memory_order_relaxed);
-  };
-  std::vector<std::uint32_t> start(cells + 1, 0);
-  parallel_chunks(static_cast<int>(n), 16384, threads, [&](int, Chunk r) {
-    for (int i = r.begin; i < r.end; ++i)
-      for_cells(range[static_cast<std::size_t>(i)], [&](std::size_t c) { take(start[c + 1]); });
+  Buckets in_cell = bucket_items(static_cast<int>(n), cells, threads, [&](int i, auto&& visit) {
+    for_cells(range[static_cast<std::size_t>(i)], visit);
   });
-  for (std::size_t c = 1; c <= cells; ++c) start[c] += start[c - 1];
-  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1), member(start.back());
-  parallel_chunks(static_cast<int>(n), 16384, threads, [&](int, Chunk r) {
-    for (int i = r.begin; i < r.end; ++i)
-      for_cells(range[static_cast<std::size_t>(i)],
-                [&](std::size_t c) { member[take(fill[c])] = static_cast<std::uint32_t>(i); });
-  });
+  const std::vector<std::uint32_t>& start = in_cell.first;
+  std::vector<std::uint32_t>& member = in_cell.items;
   // In each cell, its boxes by their lower x: a box meets only those after it
   // that start before it ends. (Copied side by side first, with their keys and
   // whether each starts in this cell along each axis: a pair's home is this
