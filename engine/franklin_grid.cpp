@@ -1450,11 +1450,16 @@ struct Cutter {
     return CGAL::collinear_are_strictly_ordered_along_line(C.s->xy(), p, C.t->xy());
   }
 
-  // Cuts C and D where they cross or touch (but where they cross apart: see
-  // meet()); true where they may meet (closed segments) other than crossing
-  // apart, false where they surely do not.
-  bool intersect(int ci, int di, bool apart) {
-    if (!boxes_meet(ci, di)) return false;
+  // Cuts C and D, whose boxes meet, where they cross or touch (but where they
+  // cross apart: see meet()); true where they may meet (closed segments) other
+  // than crossing apart, false where they surely do not. The caller holds an
+  // UpwardRounding (one switch per cell, not per pair): the points' intervals
+  // first, CGAL's predicates (rounding to nearest) only where those cannot
+  // tell. (Where the intervals tell, meet() would cut nothing, and would say
+  // they meet exactly where they share an end.)
+  bool meet_on_intervals_first(int ci, int di, bool apart) {
+    if (no_cut_on_intervals(ci, di, apart)) return common_end(ss.curves[ci], ss.curves[di]).has_value();
+    NearestRounding nearest;
     return meet(ci, di, apart);
   }
   bool boxes_meet(int ci, int di) {
@@ -1503,7 +1508,7 @@ struct Cutter {
     return o3 != 0 && o3 == o4;
   }
 
-  // intersect() for C and D whose boxes meet. Curves `apart` (apart()) are cut
+  // The exact side of meet_on_intervals_first(). Curves `apart` (apart()) are cut
   // only where they overlap or one ends on the other: a proper crossing (or
   // none) is no cut, and changes nothing of either (false).
   bool meet(int ci, int di, bool apart) {
@@ -1684,17 +1689,11 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
   if (regions) {
     each_cell([&](Cutter& cutter, const Cell& cell) {
       const auto& cs = cell.curves;
-      if (cs.size() >= 2) {   // (the pairs on intervals first: one rounding switch per cell)
+      if (cs.size() >= 2) {
         UpwardRounding upward;
         for (std::size_t i = 0; i < cs.size(); ++i)
-          for (std::size_t j = i + 1; j < cs.size(); ++j) {
-            const int a = cs[i], b = cs[j];
-            if (!cutter.boxes_meet(a, b)) continue;
-            const bool ab = is_apart(a, b);
-            if (cutter.no_cut_on_intervals(a, b, ab)) continue;
-            NearestRounding nearest;   // (CGAL's predicates and constructions round to nearest)
-            cutter.meet(a, b, ab);
-          }
+          for (std::size_t j = i + 1; j < cs.size(); ++j)
+            if (cutter.boxes_meet(cs[i], cs[j])) cutter.meet_on_intervals_first(cs[i], cs[j], is_apart(cs[i], cs[j]));
       }
       for (int ci : cs) pierce(cutter, cell, ci);
     });
@@ -1709,22 +1708,29 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
     std::vector<char> drawn(n);
     for (std::size_t c = 0; c < n; ++c) drawn[c] = ss.curves[c].drawn;
     cuts.needed = drawn;
-    each_cell([&](Cutter& cutter, const Cell& cell) {
+    // (As for the whole map: the pairs on intervals first, one rounding switch per cell.)
+    auto each_pair = [&](Cutter& cutter, const Cell& cell, auto&& wanted, auto&& met) {
       const auto& cs = cell.curves;
+      if (cs.size() < 2) return;
+      UpwardRounding upward;
       for (std::size_t i = 0; i < cs.size(); ++i)
-        for (std::size_t j = i + 1; j < cs.size(); ++j)
-          if ((drawn[cs[i]] || drawn[cs[j]]) && cutter.intersect(cs[i], cs[j], is_apart(cs[i], cs[j]))) {
-            cutter.row.met.push_back(cs[i]);
-            cutter.row.met.push_back(cs[j]);
-          }
+        for (std::size_t j = i + 1; j < cs.size(); ++j) {
+          const int a = cs[i], b = cs[j];
+          if (wanted(a, b) && cutter.boxes_meet(a, b) && cutter.meet_on_intervals_first(a, b, is_apart(a, b)))
+            met(a, b);
+        }
+    };
+    each_cell([&](Cutter& cutter, const Cell& cell) {
+      each_pair(cutter, cell, [&](int a, int b) { return drawn[a] || drawn[b]; }, [&](int a, int b) {
+        cutter.row.met.push_back(a);
+        cutter.row.met.push_back(b);
+      });
     });
     bucket_needed_curves(g, ss, cuts.needed, threads);
     each_cell([&](Cutter& cutter, const Cell& cell) {
       const auto& cs = cell.curves;
-      for (std::size_t i = 0; i < cs.size(); ++i)
-        for (std::size_t j = i + 1; j < cs.size(); ++j)
-          if (!drawn[cs[i]] && !drawn[cs[j]] && (cuts.needed[cs[i]] || cuts.needed[cs[j]]))
-            cutter.intersect(cs[i], cs[j], is_apart(cs[i], cs[j]));
+      each_pair(cutter, cell, [&](int a, int b) { return !drawn[a] && !drawn[b] && (cuts.needed[a] || cuts.needed[b]); },
+                [](int, int) {});
       for (int ci : cs)
         if (cuts.needed[ci]) pierce(cutter, cell, ci);
     });
