@@ -497,14 +497,16 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
   };
   // A run's first group makes the pieces of every group of the run, told apart
   // by exact keys.
+  // (One exact key per group, not per edge: its edges lie between the same two
+  // vertices. Groups sorted by (key, group) list their edges as the edges sorted
+  // by (key, edge) would: a group's edges are consecutive, groups in order.)
   auto pieces_of_run = [&](std::size_t g, Scratch& w, Found& out) {
-    auto& keyed = w.keyed;
+    auto& keyed = w.keyed;   // (key, group)
     keyed.clear();
     const std::size_t lo = run_at[g];
     for (std::size_t s = lo; s < ngroups && slots[s].hash == slots[lo].hash; ++s) {
       const std::uint32_t h = slots[s].group;
-      for (std::size_t i = groups.start[h]; i < groups.start[h + 1]; ++i)
-        keyed.emplace_back(exact_key(edges[i], dir[h].axis), static_cast<std::uint32_t>(i));
+      keyed.emplace_back(exact_key(group_edge(h), dir[h].axis), h);
     }
     std::sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) {
       if (key_less(x.first, y.first)) return true;
@@ -516,7 +518,9 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
       std::size_t b = a + 1;
       while (b < keyed.size() && !key_less(keyed[a].first, keyed[b].first)) ++b;
       w.group.clear();
-      for (std::size_t i = a; i < b; ++i) w.group.push_back(keyed[i].second);
+      for (std::size_t i = a; i < b; ++i)
+        for (std::size_t e = groups.start[keyed[i].second]; e < groups.start[keyed[i].second + 1]; ++e)
+          w.group.push_back(static_cast<std::uint32_t>(e));
       sweep_line(w.group.data(), w.group.size(), keyed[a].first.axis, w, out.pieces);
       a = b;
     }
