@@ -26,6 +26,9 @@
 #include "engine/visibility.h"
 #include "verify/verify_cli.h"
 
+#include <CGAL/version.h>
+#include <gmp.h>
+
 namespace {
 
 const char* kHelp = R"(usage: vismap SCENE [options]
@@ -103,6 +106,7 @@ input:
                        memory than SIZE (e.g. 512M, 8G; default: the physical
                        memory, or a lower cgroup or ulimit -v limit)
   -h, --help           this text
+  --version            vismap's version and the exact arithmetic it was built with
 
 exit status: 0 success, 1 bad input or output error, 2 bad usage,
 3 internal error; killed by SIGINT/SIGTERM, it leaves no partial output
@@ -139,6 +143,13 @@ const char* option_hint(std::string_view message) {
 
 }  // namespace
 
+namespace {
+// vismap's version, and the exact arithmetic behind the maps (a bug report's first line).
+void print_version() {
+  std::printf("vismap %s (CGAL %s, GMP %s)\n", VISMAP_VERSION, CGAL_VERSION_STR, gmp_version);
+}
+}  // namespace
+
 int main(int argc, char** argv) {
   vismap::install_output_cleanup_handlers();
   if (argc >= 2 && std::string(argv[1]) == "verify")
@@ -163,6 +174,7 @@ int main(int argc, char** argv) {
         return args[++i];
       };
       if (a == "-h" || a == "--help") { std::fputs(kHelp, stdout); return 0; }
+      else if (a == "--version") { print_version(); return 0; }
       else if (a == "-o" || a == "--svg") svg_path = value();
       else if (a == "--painter") painter_path = value();
       else if (a == "--algorithm") {

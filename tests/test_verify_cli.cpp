@@ -4,6 +4,7 @@
 // kind, a non-canonical number) with exit status 1 and a located message; bad
 // usage is 2, unreadable input 1. The old tool name still works.
 #include <gtest/gtest.h>
+#include <cctype>
 
 #include <filesystem>
 #include <fstream>
@@ -56,6 +57,11 @@ TEST(VerifyCli, HelpAndUsage) {
   EXPECT_EQ(r.status, 0);
   EXPECT_NE(r.out.find("usage: vismap verify SCENE MAP.json"), std::string::npos) << r.out;
   EXPECT_NE(vismap(dir, {"--help"}).out.find("vismap verify"), std::string::npos);
+  r = vismap(dir, {"--version"});
+  EXPECT_EQ(r.status, 0) << both(r);
+  EXPECT_TRUE(r.out.rfind("vismap ", 0) == 0 && r.out.size() > 7 && std::isdigit(static_cast<unsigned char>(r.out[7])))
+      << r.out;   // (CMakeLists.txt's project version)
+  EXPECT_NE(r.out.find("GMP "), std::string::npos) << r.out;
 
   const std::string scene = (kData / "t_junction.off").string();
   for (const std::vector<std::string>& args :
