@@ -1,6 +1,8 @@
 #include "arrangements/dxf_writer.h"
 
-#include <cstdio>
+#include <string>
+
+#include "arrangements/rational.h"
 
 namespace vismap {
 namespace {
@@ -13,11 +15,7 @@ void group(std::string& out, int code, const std::string& value) {
   out += '\n';
 }
 
-std::string real(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+std::string real(double v) { return general_text(v, 17); }
 
 // AutoCAD colour index per class: outline white/black, crease blue,
 // intersection red, smooth green, hidden grey.

@@ -1,5 +1,6 @@
 #include "arrangements/rational.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -61,6 +62,17 @@ double nearest_double(const mpq_class& q) {
   std::memcpy(&bits, &d, sizeof d);
   return bits % 2 == 0 ? d : away;   // a tie: the even one
 }
+
+namespace {
+std::string decimal_text(double v, std::chars_format format, int precision) {
+  char buf[400];   // (the longest: 309 integer digits, a sign, a point and the places)
+  const std::to_chars_result r = std::to_chars(buf, buf + sizeof buf, v, format, precision);
+  return std::string(buf, r.ec == std::errc() ? r.ptr : buf);
+}
+}  // namespace
+
+std::string fixed_text(double v, int places) { return decimal_text(v, std::chars_format::fixed, places); }
+std::string general_text(double v, int digits) { return decimal_text(v, std::chars_format::general, digits); }
 
 bool operator<(const Point2& a, const Point2& b) {
   int c = cmp(a.x, b.x);

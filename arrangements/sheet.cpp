@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cctype>
-#include <cstdio>
+
+#include "arrangements/rational.h"
 
 namespace vismap {
 namespace {
@@ -24,11 +25,7 @@ Extent extent_of(const VisibilityMap& map) {
   return e;
 }
 
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3f", v);
-  return buf;
-}
+std::string num(double v) { return fixed_text(v, 3); }
 
 // Each column's and row's origin (the least x, y of its views) and size (the
 // largest extent past it), in screen units.

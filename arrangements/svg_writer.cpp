@@ -6,14 +6,12 @@
 #include <string>
 #include <vector>
 
+#include "arrangements/rational.h"
+
 namespace vismap {
 namespace {
 
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3f", v);
-  return buf;
-}
+std::string num(double v) { return fixed_text(v, 3); }
 
 std::string xy(const std::array<double, 2>& p) { return num(p[0]) + " " + num(p[1]); }
 std::string xy(const Placement& at, const Point2& p) { return xy(at.at(p.x.get_d(), p.y.get_d())); }
