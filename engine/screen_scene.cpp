@@ -1161,7 +1161,13 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
       make_images_of(M, ss.images, ends, threads);
     }
   }
-  if (!latent) ss.curves.reserve(pieces.size() + ss.facets.size() / 8);   // (+ near-plane cuts; + intersection lines later)
+  // Room for every curve made here, so that none is moved (a vector grown by
+  // doubling held up to twice its curves at once, in fresh pages): where pieces
+  // are judged, those drawn; + near-plane cuts; + intersection lines later.
+  // (Reserved, not touched: room never used costs no memory.)
+  const std::size_t made_here = latent ? static_cast<std::size_t>(std::count(verdict.begin(), verdict.end(), V::Drawn))
+                                       : pieces.size();
+  ss.curves.reserve(made_here + ss.facets.size() / 8);
   std::vector<std::array<std::int64_t, 3>> dropped(static_cast<std::size_t>(chunks));
   std::vector<std::vector<int>> left(static_cast<std::size_t>(chunks));
   const std::size_t first_ends = ss.ends.size();
@@ -1286,6 +1292,7 @@ void make_latent_curves(ScreenScene& ss, const std::vector<char>& wanted, int th
   const int n = static_cast<int>(pick.size()), size = 1024, chunks = chunk_count(n, size);
   const std::size_t first_ends = ss.ends.size();
   for (int k = 0; k < chunks; ++k) ss.ends.emplace_back();
+  ss.curves.reserve(ss.curves.size() + pick.size());   // (moved at most once, not grown by doubling)
   parallel_append(ss.curves, chunks, threads, [&](int k, std::vector<Curve>& out) {
     std::array<std::int64_t, 3> dropped{};   // (counted when it was left latent)
     std::deque<P3>& ends = ss.ends[first_ends + static_cast<std::size_t>(k)];
