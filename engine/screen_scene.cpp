@@ -931,6 +931,22 @@ void make_depth_plane(Facet& f, const ExactSource& exact, std::uint32_t fi, bool
 
 }  // namespace
 
+namespace {
+// Where most pieces are drawn (a small crease angle on a dense mesh), nearly
+// every latent one meets a drawn one and is needed after all: they are made
+// now, as for a whole map, instead of being looked at, made and bucketed late
+// (bunny00 close-up at 2 degrees: 65% drawn, the lines-only map 10% slower than
+// the whole map; at 5 degrees, 29% drawn, as fast; at 10, 9% drawn, 1.5x faster).
+void make_latent_now_where_most_are_drawn(std::vector<CurveMaker::Verdict>& verdict) {
+  using V = CurveMaker::Verdict;
+  const auto drawn = std::count(verdict.begin(), verdict.end(), V::Drawn);
+  const auto latent = std::count(verdict.begin(), verdict.end(), V::Latent);
+  if (drawn < latent) return;
+  for (V& v : verdict)
+    if (v == V::Latent) v = V::Drawn;   // (made as make() makes any piece: drawn or not, by its kind)
+}
+}  // namespace
+
 ScreenScene make_screen_scene(const Scene& scene, const View& view, const Options& opt,
                               Stats& stats, bool latent, bool cull, const WorldScene* world) {
   if (scene.vertices.size() > static_cast<std::size_t>(std::numeric_limits<VertexId>::max()))
@@ -1151,6 +1167,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     parallel_chunks(np, 4096, threads, [&](int, Chunk r) {
       for (int i = r.begin; i < r.end; ++i) verdict[static_cast<std::size_t>(i)] = M.judge(pieces[static_cast<std::size_t>(i)]);
     });
+    make_latent_now_where_most_are_drawn(verdict);
     if (later) {
       std::vector<std::uint32_t> ends;
       for (std::size_t i = 0; i < pieces.size(); ++i)
