@@ -1686,16 +1686,22 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
   auto is_apart = [&](int a, int b) {
     return apart(span[static_cast<std::size_t>(a)], span[static_cast<std::size_t>(b)]);
   };
+  // A cell's pairs that `wanted(a, b)`, met(a, b) where they may meet: on the
+  // points' intervals first, one rounding switch per cell.
+  auto each_pair = [&](Cutter& cutter, const Cell& cell, auto&& wanted, auto&& met) {
+    const auto& cs = cell.curves;
+    if (cs.size() < 2) return;
+    UpwardRounding upward;
+    for (std::size_t i = 0; i < cs.size(); ++i)
+      for (std::size_t j = i + 1; j < cs.size(); ++j) {
+        const int a = cs[i], b = cs[j];
+        if (wanted(a, b) && cutter.boxes_meet(a, b) && cutter.meet_on_intervals_first(a, b, is_apart(a, b))) met(a, b);
+      }
+  };
   if (regions) {
     each_cell([&](Cutter& cutter, const Cell& cell) {
-      const auto& cs = cell.curves;
-      if (cs.size() >= 2) {
-        UpwardRounding upward;
-        for (std::size_t i = 0; i < cs.size(); ++i)
-          for (std::size_t j = i + 1; j < cs.size(); ++j)
-            if (cutter.boxes_meet(cs[i], cs[j])) cutter.meet_on_intervals_first(cs[i], cs[j], is_apart(cs[i], cs[j]));
-      }
-      for (int ci : cs) pierce(cutter, cell, ci);
+      each_pair(cutter, cell, [](int, int) { return true; }, [](int, int) {});
+      for (int ci : cell.curves) pierce(cutter, cell, ci);
     });
   } else {
     // The drawn lines alone (Franklin's step 8 iv-v): every pair with a drawn
@@ -1708,18 +1714,6 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
     std::vector<char> drawn(n);
     for (std::size_t c = 0; c < n; ++c) drawn[c] = ss.curves[c].drawn;
     cuts.needed = drawn;
-    // (As for the whole map: the pairs on intervals first, one rounding switch per cell.)
-    auto each_pair = [&](Cutter& cutter, const Cell& cell, auto&& wanted, auto&& met) {
-      const auto& cs = cell.curves;
-      if (cs.size() < 2) return;
-      UpwardRounding upward;
-      for (std::size_t i = 0; i < cs.size(); ++i)
-        for (std::size_t j = i + 1; j < cs.size(); ++j) {
-          const int a = cs[i], b = cs[j];
-          if (wanted(a, b) && cutter.boxes_meet(a, b) && cutter.meet_on_intervals_first(a, b, is_apart(a, b)))
-            met(a, b);
-        }
-    };
     each_cell([&](Cutter& cutter, const Cell& cell) {
       each_pair(cutter, cell, [&](int a, int b) { return drawn[a] || drawn[b]; }, [&](int a, int b) {
         cutter.row.met.push_back(a);

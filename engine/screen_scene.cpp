@@ -929,9 +929,6 @@ void make_depth_plane(Facet& f, const ExactSource& exact, std::uint32_t fi, bool
   }
 }
 
-}  // namespace
-
-namespace {
 // Where most pieces are drawn (a small crease angle on a dense mesh), nearly
 // every latent one meets a drawn one and is needed after all: they are made
 // now, as for a whole map, instead of being looked at, made and bucketed late
