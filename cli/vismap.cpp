@@ -1,5 +1,8 @@
 // vismap: exact visibility maps from mesh files.
 //   read scene -> camera -> engine -> JSON / SVG, each output written whole or not at all.
+#include <CGAL/version.h>
+#include <gmp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -25,9 +28,6 @@
 #include "engine/threads.h"
 #include "engine/visibility.h"
 #include "verify/verify_cli.h"
-
-#include <CGAL/version.h>
-#include <gmp.h>
 
 namespace {
 
@@ -141,13 +141,11 @@ const char* option_hint(std::string_view message) {
   return "";
 }
 
-}  // namespace
-
-namespace {
 // vismap's version, and the exact arithmetic behind the maps (a bug report's first line).
 void print_version() {
   std::printf("vismap %s (CGAL %s, GMP %s)\n", VISMAP_VERSION, CGAL_VERSION_STR, gmp_version);
 }
+
 }  // namespace
 
 int main(int argc, char** argv) {
