@@ -312,6 +312,26 @@ TEST(LinesOnly, OneSurfaceIsLookedAtOnlyNearItsDrawnLines) {
     }
 }
 
+// A lines-only drawing leaves the pieces it does not draw latent (made later
+// only where a drawn line is) while they are the more numerous; where most
+// pieces are drawn (a small crease angle on a dense mesh) it makes them all at
+// once, as the whole map does. Either way: the whole map's segments.
+TEST(LinesOnly, PiecesLeftLatentOnlyWhereMostAreNotDrawn) {
+  const vismap::Scene scene = hills(40);
+  const vismap::View view = vismap::make_view(ortho({-1, -2, -3}), scene);
+  for (const double crease : {30.0, 2.0}) {
+    vismap::Options whole;
+    whole.crease_deg = crease;
+    vismap::Options lines = whole;
+    lines.regions = false;
+    const vismap::VisibilityMap m = vismap::visibility_franklin(scene, view, lines);
+    const std::int64_t pieces = m.stats.counted("edge_pieces"), latent = m.stats.counted("curves_latent");
+    if (crease == 30.0) EXPECT_GT(2 * latent, pieces) << "most of a smooth surface's pieces are left latent";
+    else EXPECT_EQ(latent, 0) << "most pieces drawn: every piece made at once";
+    EXPECT_EQ(segments_of(map_json(scene, view, lines)), segments_of(map_json(scene, view, whole))) << "crease " << crease;
+  }
+}
+
 // A lines-only drawing's screen scene leaves the vertex images for later where
 // the near plane cuts nothing, projecting, culling and boxing the faces on the
 // intervals it keeps for them: those must be the very intervals each image has
