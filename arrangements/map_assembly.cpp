@@ -526,12 +526,7 @@ void trace_faces(MapGraph& g, int threads) {
       comp.join(u, v);
     }
   });
-  std::vector<int> lowest;   // in vertex order
-  engine::parallel_append(lowest, engine::chunk_count(a.nverts, 16384), threads, [&](int k, std::vector<int>& out) {
-    const engine::Chunk r = engine::chunk(k, a.nverts, 16384);
-    for (int w = r.begin; w < r.end; ++w)
-      if (comp.find(w) == w) out.push_back(w);
-  });
+  const std::vector<int> lowest = engine::indices_where(a.nverts, threads, [&](int w) { return comp.find(w) == w; });
   std::vector<int> outer_cycles(lowest.size());   // per component, in order of their lowest vertex
   engine::parallel_chunks(static_cast<int>(lowest.size()), 16384, threads, [&](int, engine::Chunk r) {
     for (int k = r.begin; k < r.end; ++k) {

@@ -131,12 +131,8 @@ std::vector<Chain> drawn_chains(const MapGraph& g, const Essential& ess, std::ve
 std::vector<std::uint32_t> write_vertices(const MapGraph& g, const std::vector<char>& written, VisibilityMap& map,
                                           int threads) {
   const int nverts = static_cast<int>(g.points.size());
-  std::vector<int> at;   // the written vertices, in order
-  engine::parallel_append(at, engine::chunk_count(nverts, 16384), threads, [&](int k, std::vector<int>& out) {
-    const engine::Chunk r = engine::chunk(k, nverts, 16384);
-    for (int w = r.begin; w < r.end; ++w)
-      if (written[static_cast<std::size_t>(w)]) out.push_back(w);
-  });
+  const std::vector<int> at =   // the written vertices, in order
+      engine::indices_where(nverts, threads, [&](int w) { return written[static_cast<std::size_t>(w)] != 0; });
   std::vector<std::uint32_t> index(g.points.size(), 0);
   engine::parallel_chunks(static_cast<int>(at.size()), 16384, threads, [&](int, engine::Chunk r) {
     for (int i = r.begin; i < r.end; ++i)

@@ -248,4 +248,18 @@ std::vector<T> parallel_make(int n, int size, int threads, Make&& make) {
   return out;
 }
 
+// The i in [0, n) where keep(i), ascending: chunks tested side by side, then
+// appended in order.
+template <class Keep>
+std::vector<int> indices_where(int n, int threads, Keep&& keep) {
+  std::vector<int> out;
+  const int size = 16384;
+  parallel_append(out, chunk_count(n, size), threads, [&](int k, std::vector<int>& found) {
+    const Chunk r = chunk(k, n, size);
+    for (int i = r.begin; i < r.end; ++i)
+      if (keep(i)) found.push_back(i);
+  });
+  return out;
+}
+
 }  // namespace vismap::engine

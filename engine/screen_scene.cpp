@@ -934,13 +934,15 @@ void make_depth_plane(Facet& f, const ExactSource& exact, std::uint32_t fi, bool
 // now, as for a whole map, instead of being looked at, made and bucketed late
 // (bunny00 close-up at 2 degrees: 65% drawn, the lines-only map 10% slower than
 // the whole map; at 5 degrees, 29% drawn, as fast; at 10, 9% drawn, 1.5x faster).
-void make_latent_now_where_most_are_drawn(std::vector<CurveMaker::Verdict>& verdict) {
+// Returns how many pieces are to be made now.
+std::size_t make_latent_now_where_most_are_drawn(std::vector<CurveMaker::Verdict>& verdict) {
   using V = CurveMaker::Verdict;
   const auto drawn = std::count(verdict.begin(), verdict.end(), V::Drawn);
   const auto latent = std::count(verdict.begin(), verdict.end(), V::Latent);
-  if (drawn < latent) return;
+  if (drawn < latent) return static_cast<std::size_t>(drawn);
   for (V& v : verdict)
     if (v == V::Latent) v = V::Drawn;   // (made as make() makes any piece: drawn or not, by its kind)
+  return static_cast<std::size_t>(drawn + latent);
 }
 }  // namespace
 
@@ -1159,12 +1161,13 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   // makes the images of the drawn ones' ends, where images are left for later.
   using V = CurveMaker::Verdict;
   std::vector<V> verdict;
+  std::size_t made_here = pieces.size();   // (at most: room is reserved for them below)
   if (latent) {
     verdict.resize(pieces.size());
     parallel_chunks(np, 4096, threads, [&](int, Chunk r) {
       for (int i = r.begin; i < r.end; ++i) verdict[static_cast<std::size_t>(i)] = M.judge(pieces[static_cast<std::size_t>(i)]);
     });
-    make_latent_now_where_most_are_drawn(verdict);
+    made_here = make_latent_now_where_most_are_drawn(verdict);
     if (later) {
       std::vector<std::uint32_t> ends;
       for (std::size_t i = 0; i < pieces.size(); ++i)
@@ -1179,8 +1182,6 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   // doubling held up to twice its curves at once, in fresh pages): where pieces
   // are judged, those drawn; + near-plane cuts; + intersection lines later.
   // (Reserved, not touched: room never used costs no memory.)
-  const std::size_t made_here = latent ? static_cast<std::size_t>(std::count(verdict.begin(), verdict.end(), V::Drawn))
-                                       : pieces.size();
   ss.curves.reserve(made_here + ss.facets.size() / 8);
   std::vector<std::array<std::int64_t, 3>> dropped(static_cast<std::size_t>(chunks));
   std::vector<std::vector<int>> left(static_cast<std::size_t>(chunks));
