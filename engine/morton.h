@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "engine/parallel.h"
+
 namespace vismap::engine {
 
 // A point of the unit square (clamped; NaN counts as 0), 16 bits per axis.
@@ -20,20 +22,21 @@ inline std::uint32_t morton(double u, double v) {
 }
 
 // The positions 0..n-1 ordered by key[i], ties in position order: a stable
-// radix sort, two passes of 16 bits (a comparison sort of (key, position)
-// pairs gives the same order at about ten times the cost).
-inline std::vector<std::uint32_t> order_by_key(const std::vector<std::uint32_t>& key) {
-  const std::size_t n = key.size();
-  std::vector<std::uint32_t> order(n), pass(n);
-  for (std::size_t i = 0; i < n; ++i) pass[i] = static_cast<std::uint32_t>(i);
-  for (const int shift : {0, 16}) {
-    std::vector<std::uint32_t> start(std::size_t{1} << 16 | 1, 0);
-    for (std::uint32_t k : key) ++start[((k >> shift) & 0xffff) + 1];
-    for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
-    for (std::uint32_t i : pass) order[start[(key[i] >> shift) & 0xffff]++] = i;
-    pass.swap(order);
-  }
-  return pass;
+// radix sort, two passes of 16 bits, each pass's parts counted and placed side
+// by side on `threads` threads (a comparison sort of (key, position) pairs
+// gives the same order at about ten times the cost).
+inline std::vector<std::uint32_t> order_by_key(const std::vector<std::uint32_t>& key, int threads) {
+  const int n = static_cast<int>(key.size());
+  constexpr std::size_t kBuckets = std::size_t{1} << 16;
+  auto at = [](int i) { return static_cast<std::size_t>(i); };
+  const Buckets low = bucket_items(n, kBuckets, threads, [&](int i, auto&& in) { in(key[at(i)] & 0xffff); });
+  const std::vector<std::uint32_t>& by_low = low.items;
+  const Buckets high = bucket_items(n, kBuckets, threads, [&](int k, auto&& in) { in(key[by_low[at(k)]] >> 16); });
+  std::vector<std::uint32_t> order(key.size());
+  parallel_chunks(n, 65536, threads, [&](int, Chunk r) {
+    for (int k = r.begin; k < r.end; ++k) order[at(k)] = by_low[high.items[at(k)]];
+  });
+  return order;
 }
 
 }  // namespace vismap::engine

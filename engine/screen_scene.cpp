@@ -293,16 +293,27 @@ std::vector<std::uint32_t> screen_order(const WorldFacets& wf, const Scene& scen
   // The facets of one polygon (consecutive) share its first facet's key and so
   // keep their order: which of them speaks for the polygon where several hold
   // one edge (kinds, on fanned polygons) must not depend on the view.
+  // (In chunks: a chunk's first facet takes its polygon's first facet's key.)
   std::vector<std::uint32_t> key(n);
-  for (std::size_t i = 0; i < n; ++i)
-    key[i] = i > 0 && wf.facets[i].face == wf.facets[i - 1].face ? key[i - 1]
-                                                                 : morton((centre[i][0] - x0) / w, (centre[i][1] - y0) / h);
-  return order_by_key(key);   // (ties by index: deterministic)
+  auto key_at = [&](std::size_t i) { return morton((centre[i][0] - x0) / w, (centre[i][1] - y0) / h); };
+  parallel_chunks(static_cast<int>(n), size, threads, [&](int, Chunk part) {
+    auto first = static_cast<std::size_t>(part.begin);
+    while (first > 0 && wf.facets[first].face == wf.facets[first - 1].face) --first;
+    std::uint32_t k = key_at(first);
+    for (auto i = static_cast<std::size_t>(part.begin); i < static_cast<std::size_t>(part.end); ++i) {
+      if (i > first && wf.facets[i].face != wf.facets[i - 1].face) k = key_at(i);
+      key[i] = k;
+    }
+  });
+  return order_by_key(key, threads);   // (ties by index: deterministic)
 }
 
 // The facets of `wf` in `order` (moved out of it).
 void order_on_screen(WorldFacets& wf, const std::vector<std::uint32_t>& order, int threads) {
-  std::vector<WorldFacet> facets(order.size());
+  std::vector<WorldFacet> facets;
+  facets.reserve(order.size());
+  fault_in_spare(facets, order.size(), threads);   // (its fresh pages, side by side)
+  facets.resize(order.size());
   parallel_chunks(static_cast<int>(order.size()), 8192, threads, [&](int, Chunk r) {
     for (int k = r.begin; k < r.end; ++k) facets[static_cast<std::size_t>(k)] = std::move(wf.facets[order[static_cast<std::size_t>(k)]]);
   });

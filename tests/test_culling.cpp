@@ -288,15 +288,17 @@ TEST(HeightFields, ComponentsSharingAVertexAreNot) {
 }  // namespace
 
 // The screen order's radix sort: positions by key, ties in position order, as a
-// stable comparison sort gives them (keys with many ties, in both 16-bit halves).
+// stable comparison sort gives them (keys with many ties, in both 16-bit halves),
+// whatever the thread count (each pass's parts counted and placed side by side).
 TEST(ScreenOrder, RadixOrderIsTheStableSortsOrder) {
   std::mt19937 rng(5);
-  for (std::size_t n : {0u, 1u, 7u, 100000u}) {
+  for (std::size_t n : {0u, 1u, 7u, 100000u, 300001u}) {
     std::vector<std::uint32_t> key(n);
     for (auto& k : key) k = (rng() % 50) << (rng() % 2 ? 16 : 3) | (rng() % 3);
     std::vector<std::uint32_t> want(n);
     std::iota(want.begin(), want.end(), 0u);
     std::stable_sort(want.begin(), want.end(), [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
-    EXPECT_EQ(vismap::engine::order_by_key(key), want) << n;
+    for (const int threads : {1, 2, 3, 8})
+      EXPECT_EQ(vismap::engine::order_by_key(key, threads), want) << n << " keys, " << threads << " threads";
   }
 }
