@@ -5,6 +5,7 @@
 #include <gmpxx.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstring>
 #include <exception>
 
@@ -90,8 +91,11 @@ WorldFacet triangle_facet(int face, const std::vector<std::uint32_t>& ids, std::
 
 }  // namespace
 
-std::vector<std::uint32_t> canonical_vertex_ids(const Scene& scene) {
-  // Open addressing over a power-of-two table (no node per vertex).
+std::vector<std::uint32_t> canonical_vertex_ids(const Scene& scene, int threads) {
+  // Open addressing over a power-of-two table (no node per vertex), filled side
+  // by side: a slot, once taken, keeps one point's coordinates, and the least
+  // index among its equal vertices (an atomic minimum), as one pass in index
+  // order would leave it; then each vertex reads its point's slot.
   auto bits = [](double d) {
     d += 0.0;   // -0 == +0
     std::uint64_t b;
@@ -109,15 +113,32 @@ std::vector<std::uint32_t> canonical_vertex_ids(const Scene& scene) {
   while (cap < 2 * n) cap *= 2;
   constexpr std::uint32_t empty = 0xffffffffu;
   std::vector<std::uint32_t> table(cap, empty);
-  std::vector<std::uint32_t> canon(n);
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const Vec3& p = scene.vertices[i];
-    for (std::size_t k = hash(p) & (cap - 1);; k = (k + 1) & (cap - 1)) {
-      if (table[k] == empty) { table[k] = canon[i] = i; break; }
-      const Vec3& q = scene.vertices[table[k]];
-      if (p.x == q.x && p.y == q.y && p.z == q.z) { canon[i] = table[k]; break; }
+  auto same = [&](const Vec3& p, std::uint32_t j) {
+    const Vec3& q = scene.vertices[j];
+    return p.x == q.x && p.y == q.y && p.z == q.z;
+  };
+  parallel_chunks(static_cast<int>(n), 16384, threads, [&](int, Chunk r) {
+    for (auto i = static_cast<std::uint32_t>(r.begin); i < static_cast<std::uint32_t>(r.end); ++i) {
+      const Vec3& p = scene.vertices[i];
+      for (std::size_t k = hash(p) & (cap - 1);; k = (k + 1) & (cap - 1)) {
+        std::atomic_ref<std::uint32_t> slot(table[k]);
+        std::uint32_t held = empty;
+        if (slot.compare_exchange_strong(held, i, std::memory_order_relaxed)) break;   // (taken by i)
+        if (!same(p, held)) continue;
+        while (i < held && !slot.compare_exchange_weak(held, i, std::memory_order_relaxed)) {}
+        break;
+      }
     }
-  }
+  });
+  std::vector<std::uint32_t> canon(n);
+  parallel_chunks(static_cast<int>(n), 16384, threads, [&](int, Chunk r) {
+    for (auto i = static_cast<std::uint32_t>(r.begin); i < static_cast<std::uint32_t>(r.end); ++i) {
+      const Vec3& p = scene.vertices[i];
+      std::size_t k = hash(p) & (cap - 1);
+      while (!same(p, table[k])) k = (k + 1) & (cap - 1);
+      canon[i] = table[k];
+    }
+  });
   return canon;
 }
 
@@ -262,7 +283,7 @@ bool is_simple_ring(const std::vector<Q2>& q) {
 
 
 WorldFacets make_world_facets(const Scene& scene, int threads) {
-  const std::vector<std::uint32_t> canon = canonical_vertex_ids(scene);
+  const std::vector<std::uint32_t> canon = canonical_vertex_ids(scene, threads);
   // Chunks of faces in parallel, joined in order (their counts beside them).
   const int nfaces = static_cast<int>(scene.faces.size()), size = 4096, chunks = chunk_count(nfaces, size);
   std::vector<WorldFacets> counts(static_cast<std::size_t>(chunks));

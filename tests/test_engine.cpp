@@ -13,10 +13,13 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <map>
+#include <numeric>
 #include <random>
 #include <sstream>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <vector>
 
 #include "arrangements/json_writer.h"
@@ -26,6 +29,7 @@
 #include "engine/parallel.h"
 #include "engine/union_find.h"
 #include "engine/world_exact.h"
+#include "engine/world_facets.h"
 #include "engine/visibility.h"
 #include "tests/run_child.h"
 #include "tests/test_support.h"
@@ -880,6 +884,48 @@ TEST(Threads, ParallelSortAndMergeAsTheSerialOnes) {
         EXPECT_TRUE(mine == serial) << n << " items cut at " << cut << ", " << parts << " parts";
       }
     }
+  }
+}
+
+// A polygon soup (every face with its own copies of its corners, in shuffled
+// order): vertices with equal coordinates get one id, the least index among
+// them, whatever the thread count (the table is filled side by side).
+TEST(Threads, CanonicalVertexIdsAreTheLeastEqualVertex) {
+  const vismap::Scene mesh = vismap::gen::terrain(120, 5);
+  vismap::Scene soup;
+  for (const vismap::IndexRing& f : mesh.faces) {
+    vismap::IndexRing ring;
+    for (std::uint32_t v : f) {
+      ring.push_back(static_cast<std::uint32_t>(soup.vertices.size()));
+      soup.vertices.push_back(mesh.vertices[v]);
+    }
+    soup.faces.push_back(ring);
+  }
+  std::vector<std::uint32_t> place(soup.vertices.size());   // (shuffled: the least copy is not the first used)
+  std::iota(place.begin(), place.end(), 0u);
+  std::shuffle(place.begin(), place.end(), std::mt19937(7));
+  std::vector<Vec3> shuffled(soup.vertices.size());
+  for (std::size_t i = 0; i < place.size(); ++i) shuffled[place[i]] = soup.vertices[i];
+  soup.vertices = shuffled;
+  for (vismap::IndexRing& f : soup.faces)
+    for (std::uint32_t& v : f) v = place[v];
+  ASSERT_GT(soup.vertices.size(), 4u * 16384u);   // (many chunks per thread)
+  std::map<std::tuple<double, double, double>, std::uint32_t> least;
+  for (std::uint32_t i = 0; i < soup.vertices.size(); ++i) {
+    const Vec3& p = soup.vertices[i];
+    least.try_emplace({p.x, p.y, p.z}, i);
+  }
+  ASSERT_LT(least.size(), soup.vertices.size() / 4);
+  for (const int threads : {1, 2, 8}) {
+    const vismap::engine::WorldFacets wf = vismap::engine::make_world_facets(soup, threads);
+    ASSERT_EQ(wf.facets.size(), soup.faces.size());
+    std::size_t wrong = 0;
+    for (std::size_t f = 0; f < wf.facets.size(); ++f)
+      for (std::size_t k = 0; k < wf.facets[f].v.size(); ++k) {
+        const Vec3& p = soup.vertices[soup.faces[f][k]];
+        wrong += wf.facets[f].v[k] != least.at({p.x, p.y, p.z});
+      }
+    EXPECT_EQ(wrong, 0u) << threads << " threads";
   }
 }
 
