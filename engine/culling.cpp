@@ -85,7 +85,7 @@ ClosedComponents closed_components(const Scene& scene, const WorldFacets& wf, co
   ClosedComponents cc;
   cc.side.assign(n, 0);
   // (An open surface, a terrain: no orientation to find, and no per-component
-  // sums to make room for, 74 bytes per facet.)
+  // sums to make room for, 28 bytes per facet.)
   bool any_closed = false;
   for (int f = 0; f < n && !any_closed; ++f) any_closed = comp[f] == f && closed[f];
   if (!any_closed) {
@@ -93,16 +93,13 @@ ClosedComponents closed_components(const Scene& scene, const WorldFacets& wf, co
     return cc;
   }
 
-  // Each closed component's origin: the first corner of its first facet.
-  std::vector<Vec3> origin(n);
-  std::vector<char> has_origin(n, 0);
-  for (int f = 0; f < n; ++f) {
-    const int c = comp[f];
-    if (closed[c] && !has_origin[c]) {
-      origin[c] = scene.vertices[wf.facets[f].v[0]];
-      has_origin[c] = 1;
-    }
-  }
+  // The closed components, numbered in the order of their first facets (their
+  // roots), each with its origin: the first corner of that facet.
+  std::vector<int> number(static_cast<std::size_t>(n), -1);
+  int ncomp = 0;
+  for (int f = 0; f < n; ++f)
+    if (comp[f] == f && closed[f]) number[f] = ncomp++;
+  auto origin = [&](int c) -> const Vec3& { return scene.vertices[wf.facets[static_cast<std::size_t>(c)].v[0]]; };
   // Orientation of each closed component: the sign of its signed volume, a sum
   // of tetrahedra from its origin. Each facet's share (and its farthest
   // coordinate) in parallel chunks, summed per component in facet order.
@@ -118,52 +115,55 @@ ClosedComponents closed_components(const Scene& scene, const WorldFacets& wf, co
       if (!closed[c]) continue;
       const auto& v = wf.facets[f].v;
       for (std::size_t k = 1; k + 1 < v.size(); ++k)
-        share[f] += world::det<Interval>(origin[c], scene.vertices[v[0]], scene.vertices[v[k]], scene.vertices[v[k + 1]]);
+        share[f] += world::det<Interval>(origin(c), scene.vertices[v[0]], scene.vertices[v[k]], scene.vertices[v[k + 1]]);
       for (auto id : v) {
         const Vec3& p = scene.vertices[id];
         reach[f] = std::max({reach[f], -p.x, -p.y, -p.z, p.x, p.y, p.z});
       }
     }
   });
-  std::vector<Interval> volume(n, Interval(0));
-  std::vector<double> far(n, 0);
+  std::vector<Interval> volume(static_cast<std::size_t>(ncomp), Interval(0));
+  std::vector<double> far(static_cast<std::size_t>(ncomp), 0);
   {
     CGAL::Protect_FPU_rounding<true> upward;
     for (int f = 0; f < n; ++f) {
       const int c = comp[f];
       if (!closed[c]) continue;
-      volume[c] += share[f];
-      far[c] = std::max(far[c], reach[f]);
+      const auto k = static_cast<std::size_t>(number[c]);
+      volume[k] += share[f];
+      far[k] = std::max(far[k], reach[f]);
     }
   }
-  std::vector<std::int8_t> sign(n, 0);
+  std::vector<std::int8_t> sign(static_cast<std::size_t>(ncomp), 0);
   std::vector<CGAL::Mpzf> exact;
-  for (int c = 0; c < n; ++c) {
-    if (!closed[c] || comp[c] != c) continue;
+  for (std::size_t k = 0; k < sign.size(); ++k) {
     // Beyond 2^300 a product of three differences may overflow, and an interval
     // with an infinite bound is not to be trusted (inf * 0 is NaN, which a max
     // can drop): such a component is summed exactly.
-    if (!(far[c] <= 0x1p300)) volume[c] = Interval(-1, 1);
-    if (volume[c].inf() > 0) sign[c] = 1;
-    else if (volume[c].sup() < 0) sign[c] = -1;
-    else if (exact.empty()) exact.resize(n);   // (then summed below)
+    if (!(far[k] <= 0x1p300)) volume[k] = Interval(-1, 1);
+    if (volume[k].inf() > 0) sign[k] = 1;
+    else if (volume[k].sup() < 0) sign[k] = -1;
+    else if (exact.empty()) exact.resize(sign.size());   // (then summed below)
   }
   if (!exact.empty()) {
     for (int f = 0; f < n; ++f) {
       const int c = comp[f];
-      if (!closed[c] || sign[c] != 0) continue;
+      if (!closed[c] || sign[static_cast<std::size_t>(number[c])] != 0) continue;
+      const auto k = static_cast<std::size_t>(number[c]);
       const auto& v = wf.facets[f].v;
-      for (std::size_t k = 1; k + 1 < v.size(); ++k)
-        exact[c] = exact[c] + world::det<CGAL::Mpzf>(origin[c], scene.vertices[v[0]], scene.vertices[v[k]], scene.vertices[v[k + 1]]);
+      for (std::size_t j = 1; j + 1 < v.size(); ++j)
+        exact[k] = exact[k] + world::det<CGAL::Mpzf>(origin(c), scene.vertices[v[0]], scene.vertices[v[j]], scene.vertices[v[j + 1]]);
     }
-    for (int c = 0; c < n; ++c)
-      if (closed[c] && comp[c] == c && sign[c] == 0) sign[c] = static_cast<std::int8_t>(exact[c].sign());
+    for (std::size_t k = 0; k < sign.size(); ++k)
+      if (sign[k] == 0) sign[k] = static_cast<std::int8_t>(exact[k].sign());
   }
   cc.component = std::move(comp);
-  for (int f = 0; f < n; ++f) {
-    const int c = cc.component[f];
-    if (closed[c]) cc.side[f] = sign[c];
-  }
+  parallel_chunks(n, 16384, threads, [&](int, Chunk r) {
+    for (int f = r.begin; f < r.end; ++f) {
+      const int c = cc.component[f];
+      if (closed[c]) cc.side[f] = sign[static_cast<std::size_t>(number[c])];
+    }
+  });
   return cc;
 }
 
