@@ -12,6 +12,8 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
 
 #include "arrangements/map_graph.h"
 #include "engine/parallel.h"
@@ -43,8 +45,9 @@ CGAL::Comparison_result as_comparison(int c) { return c < 0 ? CGAL::SMALLER : c 
 // terrain asked this 17 M times): canonical rationals are equal when their
 // limbs are, and then y's intervals usually decide. No rounding-mode switch, no
 // interval retried, as CGAL's filtered predicate would for every one of them.
-CGAL::Comparison_result exact_compare_xy(const P2& a, const P2& b, const Interval& ay, const Interval& by) {
-  const auto &ea = CGAL::exact(a), &eb = CGAL::exact(b);
+using ExactPoint = std::remove_cvref_t<decltype(CGAL::exact(std::declval<const P2&>()))>;
+CGAL::Comparison_result exact_compare_xy(const ExactPoint& ea, const ExactPoint& eb, const Interval& ay,
+                                         const Interval& by) {
   if (!mpq_equal(raw(ea.x()), raw(eb.x()))) return as_comparison(mpq_cmp(raw(ea.x()), raw(eb.x())));
   if (ay.sup() < by.inf()) return CGAL::SMALLER;
   if (by.sup() < ay.inf()) return CGAL::LARGER;
@@ -115,10 +118,11 @@ std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph
   // axis vertical) are then ordered by y alone, mostly by y's intervals, with no
   // exact value made.
   auto known_x = [&](const End& e) { return e.at % 2 == 0 ? pieces[e.at / 2].xa : pieces[e.at / 2].xb; };
-  auto compare = [&](const End& a, const End& b) {
+  // (pa, pb: the two ends' points; exact_a(), exact_b(): their exact values,
+  // wherever they are kept.)
+  auto compare_with = [&](const End& a, const P2& pa, const End& b, const P2& pb, auto&& exact_a, auto&& exact_b) {
     if (a.x.sup() < b.x.inf()) return CGAL::SMALLER;
     if (b.x.sup() < a.x.inf()) return CGAL::LARGER;
-    const P2 &pa = point(a), &pb = point(b);
     if (exact::same_rep(pa, pb)) return CGAL::EQUAL;
     const Interval &ay = approx_point(pa).y(), &by = approx_point(pb).y();
     bool x_equal = a.x.is_point() && b.x.is_point();
@@ -134,7 +138,12 @@ std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph
       if (ay.sup() < by.inf()) return CGAL::SMALLER;
       if (by.sup() < ay.inf()) return CGAL::LARGER;
     }
-    return exact_compare_xy(pa, pb, ay, by);
+    return exact_compare_xy(exact_a(), exact_b(), ay, by);
+  };
+  auto compare = [&](const End& a, const End& b) {
+    const P2 &pa = point(a), &pb = point(b);
+    return compare_with(a, pa, b, pb, [&]() -> const ExactPoint& { return CGAL::exact(pa); },
+                        [&]() -> const ExactPoint& { return CGAL::exact(pb); });
   };
   // Equal points in the order of their pieces: the same order for every thread
   // count. How many comparisons a parallel sort makes depends on the thread count,
@@ -156,22 +165,49 @@ std::vector<int> number_end_points(const std::vector<MapPiece>& pieces, MapGraph
     if (last > k) runs.push_back({static_cast<int>(k), static_cast<int>(last + 1)});
     k = last + 1;
   }
+  // Where a new point starts among the sorted ends: 1 or 0, found with a run's
+  // sort (its ends but the first), else 2 (found below).
+  std::vector<char> starts(ends.size(), 2);
   engine::parallel_chunks(static_cast<int>(runs.size()), 64, threads, [&](int, engine::Chunk r) {
-    for (int i = r.begin; i < r.end; ++i)
-      std::sort(ends.begin() + runs[i].begin, ends.begin() + runs[i].end, [&](const End& a, const End& b) {
-        const CGAL::Comparison_result c = compare(a, b);
-        return c == CGAL::SMALLER || (c == CGAL::EQUAL && a.at < b.at);
+    // (Each end kept beside its point, and its exact point once found, at its
+    // first exact comparison: a terrain's columns make millions of them.)
+    struct Kept {
+      End end;
+      const P2* p;
+      mutable const ExactPoint* exact = nullptr;
+      const ExactPoint& exact_point() const { return exact ? *exact : *(exact = &CGAL::exact(*p)); }
+    };
+    auto compare_kept = [&](const Kept& a, const Kept& b) {
+      return compare_with(a.end, *a.p, b.end, *b.p, [&]() -> const ExactPoint& { return a.exact_point(); },
+                          [&]() -> const ExactPoint& { return b.exact_point(); });
+    };
+    std::vector<Kept> run;
+    for (int i = r.begin; i < r.end; ++i) {
+      const auto first = ends.begin() + runs[i].begin, last = ends.begin() + runs[i].end;
+      run.clear();
+      for (auto e = first; e != last; ++e) run.push_back(Kept{*e, &point(*e)});
+      std::sort(run.begin(), run.end(), [&](const Kept& a, const Kept& b) {
+        const CGAL::Comparison_result c = compare_kept(a, b);
+        return c == CGAL::SMALLER || (c == CGAL::EQUAL && a.end.at < b.end.at);
       });
+      for (std::size_t k = 0; k < run.size(); ++k) {
+        first[static_cast<std::ptrdiff_t>(k)] = run[k].end;
+        const std::size_t at = static_cast<std::size_t>(runs[i].begin) + k;
+        if (k > 0) starts[at] = compare_kept(run[k - 1], run[k]) != CGAL::EQUAL;
+      }
+    }
   });
   filter_counts = before_sort;
   // Chunks of the sorted ends in parallel: where a new point starts, how many
   // each chunk has; then each chunk's points, numbered from its first.
   const int n = static_cast<int>(ends.size()), size = 16384, chunks = engine::chunk_count(n, size);
-  std::vector<char> starts(ends.size());
   std::vector<int> first(static_cast<std::size_t>(chunks) + 1, 0);
   engine::parallel_chunks(n, size, threads, [&](int c, engine::Chunk r) {
     int count = 0;
-    for (int k = r.begin; k < r.end; ++k) count += starts[k] = k == 0 || compare(ends[k - 1], ends[k]) != CGAL::EQUAL;
+    for (int k = r.begin; k < r.end; ++k) {
+      if (starts[k] == 2) starts[k] = k == 0 || compare(ends[k - 1], ends[k]) != CGAL::EQUAL;
+      count += starts[k];
+    }
     first[c + 1] = count;
   });
   std::partial_sum(first.begin(), first.end(), first.begin());
