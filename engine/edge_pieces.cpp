@@ -397,17 +397,19 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
     std::uint32_t group;   // (groups are numbered in vertex-pair order)
   };
   // (The hashes are mixed, so their top bits spread them evenly: a counting
-  // sort by the top 16 bits, in group order, leaves buckets of a few dozen to
-  // sort, in parallel; the same order as one comparison sort, at a third of its cost.)
+  // sort by the top 16 bits, in group order (its parts side by side), leaves
+  // buckets of a few dozen to sort, in parallel; the same order as one
+  // comparison sort, at a third of its cost.)
   std::vector<Slot> slots(ngroups);
   {
     constexpr int shift = 48;
-    std::vector<std::uint32_t> bucket_start((std::size_t(1) << (64 - shift)) + 1, 0);
-    for (std::size_t g = 0; g < ngroups; ++g) ++bucket_start[(cells_at[g] >> shift) + 1];
-    for (std::size_t b = 1; b < bucket_start.size(); ++b) bucket_start[b] += bucket_start[b - 1];
-    std::vector<std::uint32_t> next(bucket_start.begin(), bucket_start.end() - 1);
-    for (std::size_t g = 0; g < ngroups; ++g)
-      slots[next[cells_at[g] >> shift]++] = Slot{cells_at[g], static_cast<std::uint32_t>(g)};
+    const Buckets by_top = bucket_items(static_cast<int>(ngroups), std::size_t{1} << (64 - shift), threads,
+                                        [&](int g, auto&& in) { in(cells_at[static_cast<std::size_t>(g)] >> shift); });
+    const std::vector<std::uint32_t>& bucket_start = by_top.first;
+    parallel_chunks(static_cast<int>(ngroups), 65536, threads, [&](int, Chunk r) {
+      for (auto k = static_cast<std::size_t>(r.begin); k < static_cast<std::size_t>(r.end); ++k)
+        slots[k] = Slot{cells_at[by_top.items[k]], by_top.items[k]};
+    });
     const int nbuckets = static_cast<int>(bucket_start.size() - 1);
     parallel_chunks(nbuckets, 1024, threads, [&](int, Chunk r) {
       for (int b = r.begin; b < r.end; ++b)
