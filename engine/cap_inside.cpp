@@ -86,13 +86,14 @@ bool crosses_rightwards(const CutSegment& s, const P2& p, const CGAL::Bbox_2& pb
 
 }  // namespace
 
-std::vector<char> inside_caps(const ClosedComponents& cc, const std::vector<CutSegment>& cut,
-                              const std::vector<char>& candidate, const std::vector<CGAL::Bbox_2>& box,
-                              const std::vector<const P2*>& point) {
+std::vector<std::int8_t> cap_sides(const ClosedComponents& cc, const std::vector<CutSegment>& cut,
+                                   const std::vector<char>& candidate, const std::vector<CGAL::Bbox_2>& box,
+                                   const std::vector<const P2*>& point) {
   const std::size_t n = candidate.size();
-  std::vector<char> inside(n, 0);
-  if (cut.empty()) return inside;
-  // Each component's cut box: a facet's box not within it reaches outside the cap.
+  std::vector<std::int8_t> side(n, 0);
+  if (cut.empty()) return side;
+  // Each component's cut box: a facet's box not within it reaches outside the cap
+  // (so is not inside it).
   std::vector<CGAL::Bbox_2> cap_box(n);
   std::vector<char> has_cut(n, 0);
   for (const CutSegment& s : cut) {
@@ -107,8 +108,7 @@ std::vector<char> inside_caps(const ClosedComponents& cc, const std::vector<CutS
   std::vector<std::size_t> seen(cut.size(), 0);   // (per segment: the last facet that looked at it, + 1)
   for (std::size_t f = 0; f < n; ++f) {
     const int c = cc.component[f];
-    if (!candidate[f] || !has_cut[static_cast<std::size_t>(c)] || !within(box[f], cap_box[static_cast<std::size_t>(c)]))
-      continue;
+    if (!candidate[f] || !has_cut[static_cast<std::size_t>(c)]) continue;
     bool meets = false;
     grid.for_each_near(box[f], [&](int i) {
       const CutSegment& s = cut[static_cast<std::size_t>(i)];
@@ -116,7 +116,7 @@ std::vector<char> inside_caps(const ClosedComponents& cc, const std::vector<CutS
     });
     if (meets) continue;
     // Apart from every segment of its component, the image lies in one of the
-    // regions they bound: inside the cap if its point is.
+    // regions they bound: inside a cap if its point is, else outside them all.
     const P2& p = *point[f];
     const CGAL::Bbox_2 pbox = p.bbox();
     bool odd = false;
@@ -126,9 +126,10 @@ std::vector<char> inside_caps(const ClosedComponents& cc, const std::vector<CutS
       seen[static_cast<std::size_t>(i)] = f + 1;
       odd ^= crosses_rightwards(s, p, pbox);
     });
-    inside[f] = odd;
+    if (!odd) side[f] = -1;
+    else if (within(box[f], cap_box[static_cast<std::size_t>(c)])) side[f] = 1;
   }
-  return inside;
+  return side;
 }
 
 VISMAP_KERNEL_END

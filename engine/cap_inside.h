@@ -14,6 +14,7 @@
 #pragma once
 #include <CGAL/Bbox_2.h>
 
+#include <cstdint>
 #include <vector>
 
 #include "engine/culling.h"
@@ -31,14 +32,16 @@ struct CutSegment {
   CGAL::Bbox_2 box;
 };
 
-// Per facet, for the facets marked in `candidate`: whether its image (contained
-// in box[f], with point[f] one of its points) lies strictly inside the cap its
-// component's segments in `cut` enclose. Every segment of a candidate's
-// component must be in `cut`: the caller leaves out components whose cut it
-// cannot list (a vertex on the near plane).
-std::vector<char> inside_caps(const ClosedComponents& cc, const std::vector<CutSegment>& cut,
-                              const std::vector<char>& candidate, const std::vector<CGAL::Bbox_2>& box,
-                              const std::vector<const P2*>& point);
+// Per facet, for the facets marked in `candidate`: where its image (contained
+// in box[f], with point[f] one of its points) lies against the caps its
+// component's segments in `cut` enclose: +1 strictly inside one, -1 strictly
+// outside them all (apart from every segment, its point outside), 0 not known
+// (its box meets a segment's, or not a candidate, or its component has no cut).
+// Every segment of a candidate's component must be in `cut`: the caller leaves
+// out components whose cut it cannot list (a vertex on the near plane).
+std::vector<std::int8_t> cap_sides(const ClosedComponents& cc, const std::vector<CutSegment>& cut,
+                                   const std::vector<char>& candidate, const std::vector<CGAL::Bbox_2>& box,
+                                   const std::vector<const P2*>& point);
 
 VISMAP_KERNEL_END
 }  // namespace vismap::engine

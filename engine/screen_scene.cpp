@@ -813,9 +813,10 @@ NearCut near_cut(const ScreenScene& ss, const CurveMaker& M, const std::vector<s
 
 // Closed components hide their own faces (engine/culling.h, engine/cap_inside.h):
 // where every ray towards a facet starts outside the solid (its image apart from
-// the caps of the near plane's cut), the facets seen from behind; where every
-// one starts inside (its image within a cap), the facets seen from the front.
-// They stop being occluders (counted).
+// the caps of the near plane's cut: their boxes apart, or else its image outside
+// every cap, exactly), the facets seen from behind; where every one starts inside
+// (its image within a cap), the facets seen from the front. They stop being
+// occluders (counted).
 void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& view, const std::vector<std::int8_t>& zsign,
                            const ClosedComponents& cc, Stats& stats) {
   const std::size_t n = ss.facets.size();
@@ -843,7 +844,7 @@ void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& vie
   }
   std::vector<CGAL::Bbox_2> facet_box(n);
   for (std::size_t fi = 0; fi < n; ++fi) facet_box[fi] = ss.facets[fi].box;
-  const std::vector<char> hidden_back = hidden_when_back_facing(cc, caps, facet_box);
+  std::vector<char> hidden_back = hidden_when_back_facing(cc, caps, facet_box);
   // Seen from the solid's outside (the front of an outward-oriented component's
   // face, the back of an inward-oriented one's): hidden where every ray towards
   // it starts inside a cap (only a perspective view's near plane cuts).
@@ -853,16 +854,25 @@ void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& vie
   };
   std::vector<char> hidden_front(n, 0);
   if (!caps.empty()) {
+    // Where their boxes do not tell: each facet's image against the caps, exactly
+    // (a facet seen from behind whose box meets a cap's box may still lie
+    // outside every cap: a near plane through a mesh's sides makes caps whose
+    // images reach far across the screen).
     const NearCut cut = near_cut(ss, M, zsign, cc);
     std::vector<char> candidate(n, 0);
     std::vector<const P2*> point(n, nullptr);
     for (std::size_t fi = 0; fi < n; ++fi) {
-      if (!ss.facets[fi].occluder || !seen_from_outside(fi) || cut.unlisted[static_cast<std::size_t>(cc.component[fi])])
+      if (!ss.facets[fi].occluder || cc.side[fi] == 0 || cut.unlisted[static_cast<std::size_t>(cc.component[fi])] ||
+          (!seen_from_outside(fi) && hidden_back[fi]))
         continue;
       candidate[fi] = 1;
       point[fi] = &ss.facets[fi].v[0].xy();
     }
-    hidden_front = inside_caps(cc, cut.segments, candidate, facet_box, point);
+    const std::vector<std::int8_t> side = cap_sides(cc, cut.segments, candidate, facet_box, point);
+    for (std::size_t fi = 0; fi < n; ++fi) {
+      if (seen_from_outside(fi)) hidden_front[fi] = side[fi] > 0;
+      else if (side[fi] < 0) hidden_back[fi] = 1;
+    }
   }
   std::int64_t back = 0, front = 0;
   for (std::size_t fi = 0; fi < n; ++fi) {

@@ -26,7 +26,7 @@ namespace {
 using namespace vismap;
 using namespace vismap::engine;
 
-// A facet's image for inside_caps: its box and its first corner.
+// A facet's image for cap_sides: its box and its first corner.
 struct Image {
   CGAL::Bbox_2 box;
   P2 point;
@@ -48,20 +48,22 @@ void add_ring(std::vector<CutSegment>& cut, int component, const std::vector<std
   }
 }
 
-TEST(InsideCaps, ParityOfASquareRingTellsTheRingFromItsHole) {
+TEST(CapSides, ParityOfASquareRingTellsTheRingFromItsHoleAndTheOutside) {
   // The cap: the square [-4,4]^2 less [-1,1]^2 (a near plane through a frame).
   std::vector<CutSegment> cut;
   add_ring(cut, 0, {{-4, -4}, {4, -4}, {4, 4}, {-4, 4}});
   add_ring(cut, 0, {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}});
   const std::vector<Image> images = {
       triangle(2, 2, 3, 2, 2, 3),               // 0: in the ring
-      triangle(-0.5, -0.5, 0.5, -0.5, 0, 0.5),  // 1: in the hole (within the cut's box)
+      triangle(-0.5, -0.5, 0.5, -0.5, 0, 0.5),  // 1: in the hole (within the cut's box): outside
       triangle(0.5, 0.5, 1.5, 0.5, 1, 1.5),     // 2: across the hole's border
       triangle(5, 5, 6, 5, 5, 6),               // 3: outside the cut's box
       triangle(-3, -1, -2, -1, -2.5, -0.5),     // 4: in the ring, its ray along the hole's side
       triangle(2, 2, 3, 2, 2, 3),               // 5: in the ring, not a candidate
       triangle(2, 2, 3, 2, 2, 3),               // 6: in the ring, of a component with no cut
       triangle(3.5, -0.5, 4.5, -0.5, 4, 0.5),   // 7: across the outer border
+      triangle(-6, -3, -5, -3, -5.5, -2),       // 8: left of the ring, its ray through both walls
+      triangle(-2, 0.2, -1.5, 0.2, -1.7, 0.6),  // 9: in the ring, its ray through the hole
   };
   const std::size_t n = images.size();
   ClosedComponents cc;
@@ -76,8 +78,8 @@ TEST(InsideCaps, ParityOfASquareRingTellsTheRingFromItsHole) {
     box.push_back(im.box);
     point.push_back(&im.point);
   }
-  const std::vector<char> inside = inside_caps(cc, cut, candidate, box, point);
-  EXPECT_EQ(inside, (std::vector<char>{1, 0, 0, 0, 1, 0, 0, 0}));
+  const std::vector<std::int8_t> side = cap_sides(cc, cut, candidate, box, point);
+  EXPECT_EQ(side, (std::vector<std::int8_t>{1, -1, 0, -1, 1, 0, 0, 0, -1, 1}));
 }
 
 // A scene of triangles (each a face) over the given corners.

@@ -554,6 +554,58 @@ TEST(EmbeddedStars, NoPairSkippedCrosses) {
 
 // ---- crossings of covered lines apart in depth are not cut -----------------------
 
+// A torus of nu x nv quads (each two triangles), outward, round the z axis.
+vismap::Scene torus(int nu, int nv, double major, double minor) {
+  vismap::Scene scene;
+  scene.file = "torus";
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const double u = 2 * M_PI * i / nu, v = 2 * M_PI * j / nv, rho = major + minor * std::cos(v);
+      scene.vertices.push_back({rho * std::cos(u), rho * std::sin(u), minor * std::sin(v)});
+    }
+  auto id = [&](int i, int j) { return static_cast<std::uint32_t>((i % nu) * nv + j % nv); };
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      scene.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      scene.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return scene;
+}
+
+// A torus seen along its axis with the near plane through its tube: the plane
+// cuts the tube in a ring whose two circles' images surround every face seen
+// through the hole, so their boxes cull nothing. From the eye in the hole, the
+// faces seen from behind whose images lie in the ring's hole (not within a cap:
+// each ray towards them starts outside the solid) are culled all the same,
+// exactly. From above the torus (the target far off, the near plane a thousandth
+// of the way: through the tube), the tube's floor is seen from inside, through
+// the cap: not culled (culling it fails the checker). Newell's engine writes
+// the same maps, and the checker accepts them.
+TEST(Culling, FacesSeenFromBehindOutsideTheNearPlanesCapsAreCulled) {
+  const vismap::Scene t = torus(32, 16, 1.0, 0.3);
+  const struct {
+    const char* what;
+    vismap::Camera camera;
+    bool culls;
+  } shots[] = {{"torus from its hole", persp({0, 0, 0}, {0, 0, -1}, 90), true},
+               {"torus from above, through its tube", persp({0, 0, 0.9}, {0, 0, -1000}, 90), false}};
+  for (const auto& shot : shots) {
+    const vismap::View view = vismap::make_view(shot.camera, t);
+    vismap::Options opt;
+    opt.threads = 1;
+    const vismap::VisibilityMap m = vismap::visibility_franklin(t, view, opt);
+    EXPECT_GT(m.stats.counted("near_plane_caps"), 0) << shot.what;
+    if (shot.culls) EXPECT_GT(m.stats.counted("culled_back_faces"), 0) << shot.what;
+    const std::string json = map_json(t, view, opt);
+    vismap::VisibilityMap n = vismap::visibility_newell(t, view, opt);
+    n.stats = {};
+    EXPECT_EQ(vismap::to_json(n), json) << shot.what << ": Newell's map differs";
+    vismap_check::Options check;
+    check.samples = 800;
+    expect_checked(t, json, check, shot.what);
+  }
+}
+
 // Where two lines each with a hiding facet on both sides (Curve::covered) cross
 // on screen, one wholly nearer than the other and no face shared, the engine
 // cuts neither (cut_curves: stat crossings_left_uncut). The map must not
