@@ -10,7 +10,10 @@
 // inward-oriented component the hollow's). On the screen the cap is bounded by
 // the images of the cut segments, and a facet's image lies wholly inside it when
 // it meets none of them (its box apart from theirs) and one of its points is
-// inside (an odd number of them cross a ray from it).
+// inside (an odd number of them cross a ray from it). The same test tells where
+// an image lies outside every cap (its point outside): every ray towards it
+// starts outside the solid, so a face seen from behind is hidden there, though
+// its box meets a cap's (culling.h decides on the boxes first).
 #pragma once
 #include <CGAL/Bbox_2.h>
 
