@@ -844,7 +844,7 @@ void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& vie
   }
   std::vector<CGAL::Bbox_2> facet_box(n);
   for (std::size_t fi = 0; fi < n; ++fi) facet_box[fi] = ss.facets[fi].box;
-  std::vector<char> hidden_back = hidden_when_back_facing(cc, caps, facet_box);
+  const std::vector<char> hidden_back = hidden_when_back_facing(cc, caps, facet_box);
   // Seen from the solid's outside (the front of an outward-oriented component's
   // face, the back of an inward-oriented one's): hidden where every ray towards
   // it starts inside a cap (only a perspective view's near plane cuts).
@@ -852,7 +852,7 @@ void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& vie
     const Facet& f = ss.facets[fi];
     return (cc.side[fi] > 0 && f.facing == Facing::Front) || (cc.side[fi] < 0 && f.facing == Facing::Back);
   };
-  std::vector<char> hidden_front(n, 0);
+  std::vector<std::int8_t> cap_side(n, 0);   // (cap_sides: +1 inside a cap, -1 outside them all)
   if (!caps.empty()) {
     // Where their boxes do not tell: each facet's image against the caps, exactly
     // (a facet seen from behind whose box meets a cap's box may still lie
@@ -868,21 +868,17 @@ void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& vie
       candidate[fi] = 1;
       point[fi] = &ss.facets[fi].v[0].xy();
     }
-    const std::vector<std::int8_t> side = cap_sides(cc, cut.segments, candidate, facet_box, point);
-    for (std::size_t fi = 0; fi < n; ++fi) {
-      if (seen_from_outside(fi)) hidden_front[fi] = side[fi] > 0;
-      else if (side[fi] < 0) hidden_back[fi] = 1;
-    }
+    cap_side = cap_sides(cc, cut.segments, candidate, facet_box, point);
   }
   std::int64_t back = 0, front = 0;
   for (std::size_t fi = 0; fi < n; ++fi) {
     Facet& f = ss.facets[fi];
     if (!f.occluder || cc.side[fi] == 0) continue;
     if (seen_from_outside(fi)) {
-      if (!hidden_front[fi]) continue;
+      if (cap_side[fi] <= 0) continue;
       f.occluder = false;
       ++front;
-    } else if (hidden_back[fi]) {
+    } else if (hidden_back[fi] || cap_side[fi] < 0) {
       f.occluder = false;
       ++back;
     }
