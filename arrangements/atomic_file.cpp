@@ -6,11 +6,6 @@
 #include <unistd.h>
 
 #include <atomic>
-#include <condition_variable>
-#include <deque>
-#include <exception>
-#include <mutex>
-#include <thread>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -187,79 +182,7 @@ void AtomicFile::commit() {
   slot_ = -1;
 }
 
-namespace {
-
-// Writes the pieces it is handed to a file on a thread of its own, so that the
-// next piece is formatted while the last one is copied into the page cache (for
-// a map's JSON, tens of MB, the copy takes as long as the formatting). At most
-// two pieces wait; the writer's error is rethrown to the caller, by the next
-// write or by finish().
-class BackgroundWriter {
- public:
-  explicit BackgroundWriter(AtomicFile& file) : file_(file), thread_([this] { run(); }) {}
-  BackgroundWriter(const BackgroundWriter&) = delete;
-  BackgroundWriter& operator=(const BackgroundWriter&) = delete;
-  ~BackgroundWriter() { stop(); }
-
-  void write(std::string piece) {
-    std::unique_lock<std::mutex> hold(lock_);
-    changed_.wait(hold, [&] { return queue_.size() < 2 || error_; });
-    if (error_) std::rethrow_exception(error_);
-    queue_.push_back(std::move(piece));
-    changed_.notify_all();
-  }
-  // Every piece written, the file flushed and closed.
-  void finish() {
-    stop();
-    if (error_) std::rethrow_exception(error_);
-    file_.finish();
-  }
-
- private:
-  void run() {
-    std::unique_lock<std::mutex> hold(lock_);
-    for (;;) {
-      changed_.wait(hold, [&] { return !queue_.empty() || done_; });
-      if (queue_.empty()) return;
-      std::string piece = std::move(queue_.front());
-      queue_.pop_front();
-      hold.unlock();
-      std::exception_ptr failed;
-      try {
-        file_.write(piece);
-      } catch (...) {
-        failed = std::current_exception();
-      }
-      hold.lock();
-      if (failed) {
-        error_ = failed;
-        queue_.clear();
-      }
-      changed_.notify_all();
-      if (failed) return;
-    }
-  }
-  void stop() {
-    {
-      std::lock_guard<std::mutex> hold(lock_);
-      done_ = true;
-    }
-    changed_.notify_all();
-    if (thread_.joinable()) thread_.join();
-  }
-
-  AtomicFile& file_;
-  std::mutex lock_;
-  std::condition_variable changed_;
-  std::deque<std::string> queue_;
-  bool done_ = false;
-  std::exception_ptr error_;
-  std::thread thread_;   // (last: starts once the rest is made)
-};
-
-}  // namespace
-
-void write_outputs_atomically(const std::vector<StreamedOutput>& outputs, bool background) {
+void write_outputs_atomically(const std::vector<StreamedOutput>& outputs) {
   std::vector<std::unique_ptr<AtomicFile>> pending;
   std::vector<std::string> to_stdout;
   for (const StreamedOutput& o : outputs) {
@@ -270,14 +193,8 @@ void write_outputs_atomically(const std::vector<StreamedOutput>& outputs, bool b
     }
     pending.push_back(std::make_unique<AtomicFile>(o.path));
     AtomicFile& f = *pending.back();
-    if (background) {
-      BackgroundWriter writer(f);
-      o.render([&](std::string piece) { writer.write(std::move(piece)); });
-      writer.finish();
-    } else {
-      o.render([&](std::string piece) { f.write(piece); });
-      f.finish();
-    }
+    o.render([&](std::string piece) { f.write(piece); });
+    f.finish();
   }
   {
     // All renamed or none: a signal between two renames would leave a new file

@@ -27,16 +27,15 @@ void write_file_atomically(const std::string& path, const std::string& contents)
 // An output whose bytes are produced in pieces: render(write) calls write on
 // each piece in order (a GB of JSON need not be held whole). A piece is taken
 // by value: one handed over with std::move is never copied (tens of MB of JSON
-// go to the file or to the writing thread as they are).
+// go to the file as they are). write may be called from any thread, one call at
+// a time (write_json's threads hand over their pieces themselves).
 struct StreamedOutput {
   std::string path;
   std::function<void(const std::function<void(std::string)>& write)> render;
 };
 // As write_files_atomically: every temporary written whole first, then all renamed;
 // standard output ("-") gets its bytes last, once every file is in place.
-// `background`: each file's pieces are written by a second thread while the next
-// ones are rendered.
-void write_outputs_atomically(const std::vector<StreamedOutput>& outputs, bool background = false);
+void write_outputs_atomically(const std::vector<StreamedOutput>& outputs);
 
 // A temporary being written, for tests and callers that stream: created next
 // to `path`, removed on destruction unless commit() renamed it over `path`.

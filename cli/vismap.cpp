@@ -380,8 +380,8 @@ int main(int argc, char** argv) {
       }
       if (!painter_path.empty())
         outputs.push_back({painter_path, [&](const auto& write) { write(vismap::to_painter_svg(fragments, map, scene, view, svg)); }});
-      // All or none; on several threads, the files are written while the rest is formatted.
-      vismap::write_outputs_atomically(outputs, threads > 1);
+      // All or none (the JSON's threads write it while they format the rest).
+      vismap::write_outputs_atomically(outputs);
       if (json_path.empty() && svg_path.empty() && painter_path.empty() && views_spec.empty())
         std::fprintf(stderr, "vismap: %s: %zu regions, %zu segments (no output asked for: use -o or --json)\n",
                      scene_path.c_str(), map.regions.size(), map.segments.size());

@@ -75,6 +75,56 @@ void parallel_for(int n, int threads, Body&& body) {
   for (int i = 0; i < n; ++i) body(i);
 }
 
+// A pipeline: make(i) -> T for every i in [0, n) on `threads` threads, and
+// take(i, made) in the order of i, one at a time, each on the thread that made
+// its item: the serial takes (writing text to a file) run while the other
+// threads make the next items, with no thread of their own. After a make or
+// take throws, no later take runs; the first exception is rethrown here.
+// (For work that asks no predicate: the threads keep their own rounding modes,
+// and no filter counts are gathered.)
+template <class T, class Make, class Take>
+void parallel_in_order(int n, int threads, Make&& make, Take&& take) {
+  static_cast<void>(threads);   // (one thread without OpenMP)
+#ifdef _OPENMP
+  if (threads > 1 && n > 1) {
+    std::exception_ptr error;
+    std::mutex lock;
+    auto keep_first = [&] {
+      std::lock_guard<std::mutex> hold(lock);
+      if (!error) error = std::current_exception();
+    };
+    auto failed = [&] {
+      std::lock_guard<std::mutex> hold(lock);
+      return static_cast<bool>(error);
+    };
+#pragma omp parallel for num_threads(std::min(threads, n)) schedule(dynamic, 1) ordered
+    for (int i = 0; i < n; ++i) {
+      T item{};
+      bool made = false;
+      try {
+        if (!failed()) {
+          item = make(i);
+          made = true;
+        }
+      } catch (...) {
+        keep_first();
+      }
+#pragma omp ordered
+      {
+        try {
+          if (made && !failed()) take(i, std::move(item));
+        } catch (...) {
+          keep_first();
+        }
+      }
+    }
+    if (error) std::rethrow_exception(error);
+    return;
+  }
+#endif
+  for (int i = 0; i < n; ++i) take(i, make(i));
+}
+
 // std::inplace_merge of sorted [first, middle) and [middle, last) (stable), in
 // `parts` pieces side by side: the larger run's middle element splits both runs
 // (binary search in the other), one rotation puts the two left parts before the

@@ -15,6 +15,8 @@
 #include <iterator>
 #include <map>
 #include <numeric>
+#include <atomic>
+#include <stdexcept>
 #include <random>
 #include <sstream>
 #include <string>
@@ -936,6 +938,43 @@ TEST(Threads, ParallelSortAndMergeAsTheSerialOnes) {
         EXPECT_TRUE(mine == serial) << n << " items cut at " << cut << ", " << parts << " parts";
       }
     }
+  }
+}
+
+// The pipeline that writes the JSON: every item made once, taken in order, one
+// take at a time (none overlaps another), whatever the thread count; once a
+// make throws, no take follows (those taken are the first ones, in order: no
+// item past the failed one), and the error reaches the caller.
+TEST(Threads, InOrderPipelineTakesEachItemOnceInOrder) {
+  for (const int threads : {1, 2, 3, 8}) {
+    const int n = 500;
+    std::vector<int> taken;
+    std::atomic<int> inside{0}, overlaps{0};
+    auto make = [](int i) {
+      std::vector<int> v(static_cast<std::size_t>(1 + i % 37), i);   // (work of uneven size)
+      return v;
+    };
+    auto take = [&](int i, std::vector<int> v) {
+      if (inside.fetch_add(1) != 0) ++overlaps;
+      EXPECT_EQ(v.size(), static_cast<std::size_t>(1 + i % 37));
+      taken.push_back(v.front());
+      std::this_thread::sleep_for(std::chrono::microseconds(20));   // (a take that lasts: others make meanwhile)
+      inside.fetch_sub(1);
+    };
+    vismap::engine::parallel_in_order<std::vector<int>>(n, threads, make, take);
+    std::vector<int> all(static_cast<std::size_t>(n));
+    std::iota(all.begin(), all.end(), 0);
+    EXPECT_EQ(taken, all) << threads << " threads";
+    EXPECT_EQ(overlaps.load(), 0) << threads << " threads";
+    taken.clear();
+    auto failing = [&](int i) {
+      if (i == 123) throw std::runtime_error("make 123 failed");
+      return make(i);
+    };
+    EXPECT_THROW(vismap::engine::parallel_in_order<std::vector<int>>(n, threads, failing, take), std::runtime_error);
+    ASSERT_LE(taken.size(), 123u) << threads << " threads";
+    all.resize(taken.size());
+    EXPECT_EQ(taken, all) << threads << " threads";
   }
 }
 

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "arrangements/atomic_file.h"
+#include "engine/parallel.h"
 #include "engine/scene.h"
 #include "bench/scene_gen.h"
 #include "tests/run_child.h"
@@ -379,35 +380,52 @@ TEST(Atomic, AFailedRunLeavesTheOldFilesAndNoTemporary) {
 // Streamed outputs (the JSON of a large map comes in pieces): written whole, in
 // order; a render that fails midway leaves the old files and no temporary.
 TEST(Atomic, StreamedOutputsAreWholeOrAbsent) {
-  // (background: a second thread writes the pieces while the next are rendered)
-  for (const bool background : {false, true}) {
-    TempDir out("atomic_stream");
-    const std::string a = out.write("a.json", "old a"), b = out.write("b.svg", "old b");
-    auto pieces = [](int n) {
-      return [n](const std::function<void(const std::string&)>& write) {
-        for (int i = 0; i < n; ++i) write(std::to_string(i) + ",");
-      };
+  TempDir out("atomic_stream");
+  const std::string a = out.write("a.json", "old a"), b = out.write("b.svg", "old b");
+  auto pieces = [](int n) {
+    return [n](const std::function<void(const std::string&)>& write) {
+      for (int i = 0; i < n; ++i) write(std::to_string(i) + ",");
     };
-    vismap::write_outputs_atomically({{a, pieces(3)}, {b, pieces(2)}}, background);
-    EXPECT_EQ(vismap_test::slurp(a), "0,1,2,");
-    EXPECT_EQ(vismap_test::slurp(b), "0,1,");
-    auto failing = [](const std::function<void(const std::string&)>& write) {
-      write("half");
-      throw std::runtime_error("render failed");
+  };
+  vismap::write_outputs_atomically({{a, pieces(3)}, {b, pieces(2)}});
+  EXPECT_EQ(vismap_test::slurp(a), "0,1,2,");
+  EXPECT_EQ(vismap_test::slurp(b), "0,1,");
+  auto failing = [](const std::function<void(const std::string&)>& write) {
+    write("half");
+    throw std::runtime_error("render failed");
+  };
+  EXPECT_THROW(vismap::write_outputs_atomically({{a, pieces(5)}, {b, failing}}), std::runtime_error);
+  EXPECT_EQ(vismap_test::slurp(a), "0,1,2,");
+  EXPECT_EQ(vismap_test::slurp(b), "0,1,");
+  EXPECT_EQ(out.names(), (std::vector<std::string>{"a.json", "b.svg"}));
+}
+
+// Pieces handed over by the threads that made them (as the JSON's are), one at a
+// time, in order: all of them, large and small, in the file in order; a piece
+// that fails to be made leaves the old file and no temporary.
+TEST(Atomic, PiecesWrittenFromSeveralThreadsAreWholeAndInOrder) {
+  TempDir out("atomic_threads");
+  const std::string a = out.write("a.json", "old a");
+  auto piece = [](int i) { return std::string(static_cast<std::size_t>(i % 7) * 40000, static_cast<char>('a' + i % 26)) + ","; };
+  std::string expected;
+  for (int i = 0; i < 200; ++i) expected += piece(i);
+  for (const int threads : {1, 2, 8}) {
+    vismap::write_outputs_atomically({{a, [&](const std::function<void(std::string)>& write) {
+                                         vismap::engine::parallel_in_order<std::string>(
+                                             200, threads, piece, [&](int, std::string p) { write(std::move(p)); });
+                                       }}});
+    EXPECT_TRUE(vismap_test::slurp(a) == expected) << threads << " threads";
+    auto failing = [&](int i) {
+      if (i == 150) throw std::runtime_error("piece 150 failed");
+      return piece(i);
     };
-    EXPECT_THROW(vismap::write_outputs_atomically({{a, pieces(5)}, {b, failing}}, background), std::runtime_error);
-    EXPECT_EQ(vismap_test::slurp(a), "0,1,2,");
-    EXPECT_EQ(vismap_test::slurp(b), "0,1,");
-    EXPECT_EQ(out.names(), (std::vector<std::string>{"a.json", "b.svg"}));
-    // Many pieces, more than wait at once, and large ones: all of them, in order.
-    std::string expected;
-    for (int i = 0; i < 200; ++i) expected += std::string(static_cast<std::size_t>(i % 7) * 40000, 'a' + i % 26) + ",";
-    vismap::write_outputs_atomically({{a, [&](const std::function<void(const std::string&)>& write) {
-                                         for (int i = 0; i < 200; ++i)
-                                           write(std::string(static_cast<std::size_t>(i % 7) * 40000, 'a' + i % 26) + ",");
-                                       }}},
-                                     background);
-    EXPECT_TRUE(vismap_test::slurp(a) == expected) << "background " << background;
+    EXPECT_THROW(vismap::write_outputs_atomically({{a, [&](const std::function<void(std::string)>& write) {
+                                                      vismap::engine::parallel_in_order<std::string>(
+                                                          200, threads, failing, [&](int, std::string p) { write(std::move(p)); });
+                                                    }}}),
+                 std::runtime_error);
+    EXPECT_TRUE(vismap_test::slurp(a) == expected) << threads << " threads";
+    EXPECT_EQ(out.names(), (std::vector<std::string>{"a.json"}));
   }
 }
 
