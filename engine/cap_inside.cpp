@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/parallel.h"
+
 namespace vismap::engine {
 VISMAP_KERNEL_BEGIN
 
@@ -88,7 +90,7 @@ bool crosses_rightwards(const CutSegment& s, const P2& p, const CGAL::Bbox_2& pb
 
 std::vector<std::int8_t> cap_sides(const ClosedComponents& cc, const std::vector<CutSegment>& cut,
                                    const std::vector<char>& candidate, const std::vector<CGAL::Bbox_2>& box,
-                                   const std::vector<const P2*>& point) {
+                                   const std::vector<const P2*>& point, int threads) {
   const std::size_t n = candidate.size();
   std::vector<std::int8_t> side(n, 0);
   if (cut.empty()) return side;
@@ -105,30 +107,55 @@ std::vector<std::int8_t> cap_sides(const ClosedComponents& cc, const std::vector
     return b.xmin() < a.xmin() && a.xmax() < b.xmax() && b.ymin() < a.ymin() && a.ymax() < b.ymax();
   };
   const SegmentGrid grid(cut);
-  std::vector<std::size_t> seen(cut.size(), 0);   // (per segment: the last facet that looked at it, + 1)
-  for (std::size_t f = 0; f < n; ++f) {
-    const int c = cc.component[f];
-    if (!candidate[f] || !has_cut[static_cast<std::size_t>(c)]) continue;
-    bool meets = false;
-    grid.for_each_near(box[f], [&](int i) {
-      const CutSegment& s = cut[static_cast<std::size_t>(i)];
-      meets |= s.component == c && !apart(s.box, box[f]);
-    });
-    if (meets) continue;
-    // Apart from every segment of its component, the image lies in one of the
-    // regions they bound: inside a cap if its point is, else outside them all.
-    const P2& p = *point[f];
-    const CGAL::Bbox_2 pbox = p.bbox();
-    bool odd = false;
-    grid.for_each_rightwards(pbox, [&](int i) {
-      const CutSegment& s = cut[static_cast<std::size_t>(i)];
-      if (s.component != c || seen[static_cast<std::size_t>(i)] == f + 1) return;
-      seen[static_cast<std::size_t>(i)] = f + 1;
-      odd ^= crosses_rightwards(s, p, pbox);
-    });
-    if (!odd) side[f] = -1;
-    else if (within(box[f], cap_box[static_cast<std::size_t>(c)])) side[f] = 1;
-  }
+  // Chunks of facets side by side, each with its own marks. Facets come in
+  // screen order, so a facet mostly lies near the last one's point: where the
+  // box of both meets no segment of their component, the facet meets none, and
+  // no segment parts its point from the last one, whose parity it inherits
+  // instead of casting a ray.
+  parallel_chunks(static_cast<int>(n), 4096, threads, [&](int, Chunk r) {
+    std::vector<std::size_t> seen(cut.size(), 0);   // (per segment: the last facet that looked at it, + 1)
+    int last_c = -1;                                 // (the last point's component, box and parity)
+    CGAL::Bbox_2 last_box;
+    bool last_odd = false;
+    auto meets_any = [&](int c, const CGAL::Bbox_2& b) {
+      bool meets = false;
+      grid.for_each_near(b, [&](int i) {
+        const CutSegment& s = cut[static_cast<std::size_t>(i)];
+        meets |= s.component == c && !apart(s.box, b);
+      });
+      return meets;
+    };
+    auto ray_parity = [&](int c, const P2& p, const CGAL::Bbox_2& pbox, std::size_t f) {
+      bool odd = false;
+      grid.for_each_rightwards(pbox, [&](int i) {
+        const CutSegment& s = cut[static_cast<std::size_t>(i)];
+        if (s.component != c || seen[static_cast<std::size_t>(i)] == f + 1) return;
+        seen[static_cast<std::size_t>(i)] = f + 1;
+        odd ^= crosses_rightwards(s, p, pbox);
+      });
+      return odd;
+    };
+    for (auto f = static_cast<std::size_t>(r.begin); f < static_cast<std::size_t>(r.end); ++f) {
+      const int c = cc.component[f];
+      if (!candidate[f] || !has_cut[static_cast<std::size_t>(c)]) continue;
+      const P2& p = *point[f];
+      const CGAL::Bbox_2 pbox = p.bbox();
+      bool odd;
+      if (c == last_c && !meets_any(c, last_box + box[f] + pbox)) {
+        odd = last_odd;
+      } else {
+        if (meets_any(c, box[f])) continue;
+        // Apart from every segment of its component, the image lies in one of
+        // the regions they bound: inside a cap if its point is, else outside them all.
+        odd = ray_parity(c, p, pbox, f);
+      }
+      last_c = c;
+      last_box = pbox;
+      last_odd = odd;
+      if (!odd) side[f] = -1;
+      else if (within(box[f], cap_box[static_cast<std::size_t>(c)])) side[f] = 1;
+    }
+  });
   return side;
 }
 

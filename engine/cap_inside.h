@@ -41,10 +41,11 @@ struct CutSegment {
 // outside them all (apart from every segment, its point outside), 0 not known
 // (its box meets a segment's, or not a candidate, or its component has no cut).
 // Every segment of a candidate's component must be in `cut`: the caller leaves
-// out components whose cut it cannot list (a vertex on the near plane).
+// out components whose cut it cannot list (a vertex on the near plane). On
+// `threads` threads.
 std::vector<std::int8_t> cap_sides(const ClosedComponents& cc, const std::vector<CutSegment>& cut,
                                    const std::vector<char>& candidate, const std::vector<CGAL::Bbox_2>& box,
-                                   const std::vector<const P2*>& point);
+                                   const std::vector<const P2*>& point, int threads = 1);
 
 VISMAP_KERNEL_END
 }  // namespace vismap::engine

@@ -208,7 +208,7 @@ std::vector<NearCap> near_caps(const WorldFacets& wf, const std::vector<WorldPie
 }
 
 std::vector<char> hidden_when_back_facing(const ClosedComponents& cc, const std::vector<NearCap>& caps,
-                                          const std::vector<CGAL::Bbox_2>& facet_box) {
+                                          const std::vector<CGAL::Bbox_2>& facet_box, int threads) {
   const std::size_t n = cc.side.size();
   // Each component's caps; past a few dozen, one box holding them all (larger, so
   // still safe) keeps the test per facet short.
@@ -225,11 +225,13 @@ std::vector<char> hidden_when_back_facing(const ClosedComponents& cc, const std:
     return a.xmax() < b.xmin() || b.xmax() < a.xmin() || a.ymax() < b.ymin() || b.ymax() < a.ymin();
   };
   std::vector<char> hidden(n, 0);
-  for (std::size_t f = 0; f < n; ++f) {
-    if (cc.side[f] == 0) continue;
-    const auto& boxes = of[static_cast<std::size_t>(cc.component[f])];
-    hidden[f] = std::all_of(boxes.begin(), boxes.end(), [&](const CGAL::Bbox_2& b) { return apart(facet_box[f], b); });
-  }
+  parallel_chunks(static_cast<int>(n), 16384, threads, [&](int, Chunk r) {
+    for (auto f = static_cast<std::size_t>(r.begin); f < static_cast<std::size_t>(r.end); ++f) {
+      if (cc.side[f] == 0) continue;
+      const auto& boxes = of[static_cast<std::size_t>(cc.component[f])];
+      hidden[f] = std::all_of(boxes.begin(), boxes.end(), [&](const CGAL::Bbox_2& b) { return apart(facet_box[f], b); });
+    }
+  });
   return hidden;
 }
 

@@ -54,8 +54,9 @@ std::vector<NearCap> near_caps(const WorldFacets& wf, const std::vector<WorldPie
                                const ClosedComponents& cc, const NearPlane& np);
 
 // Per facet: hidden if it faces away from the eye in its closed component (its
-// side), because its screen box is apart from every cap of its component.
+// side), because its screen box is apart from every cap of its component. On
+// `threads` threads.
 std::vector<char> hidden_when_back_facing(const ClosedComponents& cc, const std::vector<NearCap>& caps,
-                                          const std::vector<CGAL::Bbox_2>& facet_box);
+                                          const std::vector<CGAL::Bbox_2>& facet_box, int threads = 1);
 
 }  // namespace vismap::engine

@@ -818,7 +818,7 @@ NearCut near_cut(const ScreenScene& ss, const CurveMaker& M, const std::vector<s
 // (its image within a cap), the facets seen from the front. They stop being
 // occluders (counted).
 void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& view, const std::vector<std::int8_t>& zsign,
-                           const ClosedComponents& cc, Stats& stats) {
+                           const ClosedComponents& cc, int threads, Stats& stats) {
   const std::size_t n = ss.facets.size();
   ss.solid.assign(n, -1);
   // (No closed component, an open surface: nothing to cull, nor any per-facet
@@ -842,9 +842,12 @@ void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& vie
     np.on_plane = [&](std::uint32_t id) { return box_of(M.near_image(M.world(id))); };
     caps = near_caps(M.wf, M.pieces, cc, np);
   }
+  const int nf = static_cast<int>(n);
   std::vector<CGAL::Bbox_2> facet_box(n);
-  for (std::size_t fi = 0; fi < n; ++fi) facet_box[fi] = ss.facets[fi].box;
-  const std::vector<char> hidden_back = hidden_when_back_facing(cc, caps, facet_box);
+  parallel_chunks(nf, 16384, threads, [&](int, Chunk r) {
+    for (int fi = r.begin; fi < r.end; ++fi) facet_box[static_cast<std::size_t>(fi)] = ss.facets[static_cast<std::size_t>(fi)].box;
+  });
+  const std::vector<char> hidden_back = hidden_when_back_facing(cc, caps, facet_box, threads);
   // Seen from the solid's outside (the front of an outward-oriented component's
   // face, the back of an inward-oriented one's): hidden where every ray towards
   // it starts inside a cap (only a perspective view's near plane cuts).
@@ -861,32 +864,44 @@ void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& vie
     const NearCut cut = near_cut(ss, M, zsign, cc);
     std::vector<char> candidate(n, 0);
     std::vector<const P2*> point(n, nullptr);
-    for (std::size_t fi = 0; fi < n; ++fi) {
-      if (!ss.facets[fi].occluder || cc.side[fi] == 0 || cut.unlisted[static_cast<std::size_t>(cc.component[fi])] ||
-          (!seen_from_outside(fi) && hidden_back[fi]))
-        continue;
-      candidate[fi] = 1;
-      point[fi] = &ss.facets[fi].v[0].xy();
-    }
-    cap_side = cap_sides(cc, cut.segments, candidate, facet_box, point);
+    parallel_chunks(nf, 16384, threads, [&](int, Chunk r) {
+      for (auto fi = static_cast<std::size_t>(r.begin); fi < static_cast<std::size_t>(r.end); ++fi) {
+        if (!ss.facets[fi].occluder || cc.side[fi] == 0 || cut.unlisted[static_cast<std::size_t>(cc.component[fi])] ||
+            (!seen_from_outside(fi) && hidden_back[fi]))
+          continue;
+        candidate[fi] = 1;
+        point[fi] = &ss.facets[fi].v[0].xy();
+      }
+    });
+    cap_side = cap_sides(cc, cut.segments, candidate, facet_box, point, threads);
   }
+  // What is culled, counted per chunk. A closed component taken as such does not
+  // meet itself (closed_components): a solid, whose facets never pierce each other.
+  struct alignas(64) Culled {   // (a cache line each: the chunks count side by side)
+    std::int64_t back = 0, front = 0;
+  };
+  std::vector<Culled> culled(static_cast<std::size_t>(chunk_count(nf, 16384)));
+  parallel_chunks(nf, 16384, threads, [&](int k, Chunk r) {
+    Culled& count = culled[static_cast<std::size_t>(k)];
+    for (auto fi = static_cast<std::size_t>(r.begin); fi < static_cast<std::size_t>(r.end); ++fi) {
+      if (cc.side[fi] != 0) ss.solid[fi] = cc.component[fi];
+      Facet& f = ss.facets[fi];
+      if (!f.occluder || cc.side[fi] == 0) continue;
+      if (seen_from_outside(fi)) {
+        if (cap_side[fi] <= 0) continue;
+        f.occluder = false;
+        ++count.front;
+      } else if (hidden_back[fi] || cap_side[fi] < 0) {
+        f.occluder = false;
+        ++count.back;
+      }
+    }
+  });
   std::int64_t back = 0, front = 0;
-  for (std::size_t fi = 0; fi < n; ++fi) {
-    Facet& f = ss.facets[fi];
-    if (!f.occluder || cc.side[fi] == 0) continue;
-    if (seen_from_outside(fi)) {
-      if (cap_side[fi] <= 0) continue;
-      f.occluder = false;
-      ++front;
-    } else if (hidden_back[fi] || cap_side[fi] < 0) {
-      f.occluder = false;
-      ++back;
-    }
+  for (const Culled& c : culled) {
+    back += c.back;
+    front += c.front;
   }
-  // A closed component taken as such does not meet itself (closed_components):
-  // a solid, whose facets never pierce each other.
-  for (std::size_t fi = 0; fi < n; ++fi)
-    if (cc.side[fi] != 0) ss.solid[fi] = cc.component[fi];
   stats.count("culled_back_faces", back);
   stats.count("culled_front_faces_in_caps", front);
   stats.count("near_plane_caps", static_cast<std::int64_t>(caps.size()));
@@ -1157,7 +1172,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   stats.count("culled_edge_on", edge_on);
 
   if (cull) {
-    cull_by_closed_solids(ss, M, view, zsign, closed, stats);
+    cull_by_closed_solids(ss, M, view, zsign, closed, threads, stats);
     mark_height_fields(ss, height_field, stats);
   }
 

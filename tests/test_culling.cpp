@@ -82,6 +82,58 @@ TEST(CapSides, ParityOfASquareRingTellsTheRingFromItsHoleAndTheOutside) {
   EXPECT_EQ(side, (std::vector<std::int8_t>{1, -1, 0, -1, 1, 0, 0, 0, -1, 1}));
 }
 
+// Many small triangles row by row across the same ring, its hole and outside
+// it (most points then take the parity of the last one's: nothing parts them),
+// and a second ring of another component interleaved: each side as the boxes
+// and the point's place say, at 1, 2 and 3 threads (chunks of 4096 facets).
+TEST(CapSides, NeighboursShareTheParityOfTheirRegionAtEveryThreadCount) {
+  std::vector<CutSegment> cut;
+  add_ring(cut, 0, {{-4, -4}, {4, -4}, {4, 4}, {-4, 4}});
+  add_ring(cut, 0, {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}});
+  add_ring(cut, 1, {{-2.5, -2.5}, {-1.5, -2.5}, {-1.5, -1.5}, {-2.5, -1.5}});
+  std::vector<Image> images;
+  ClosedComponents cc;
+  const int m = 130;
+  for (int row = 0; row < m; ++row)
+    for (int col = 0; col < m; ++col) {
+      const double x = -5.01 + 10.0 * col / m, y = -5.01 + 10.0 * row / m;
+      images.push_back(triangle(x, y, x + 0.05, y, x, y + 0.05));
+      cc.component.push_back((row + col) % 7 == 0 ? 1 : 0);
+    }
+  const std::size_t n = images.size();
+  cc.side.assign(n, 1);
+  std::vector<char> candidate(n, 1);
+  std::vector<CGAL::Bbox_2> box;
+  std::vector<const P2*> point;
+  for (const Image& im : images) {
+    box.push_back(im.box);
+    point.push_back(&im.point);
+  }
+  auto apart = [](const CGAL::Bbox_2& a, const CGAL::Bbox_2& b) {
+    return a.xmax() < b.xmin() || b.xmax() < a.xmin() || a.ymax() < b.ymin() || b.ymax() < a.ymin();
+  };
+  auto in_square = [](const Image& im, double lo, double hi) {
+    const double x = CGAL::to_double(im.point.x()), y = CGAL::to_double(im.point.y());
+    return lo < x && x < hi && lo < y && y < hi;
+  };
+  std::vector<std::int8_t> expected(n, 0);
+  int inside = 0, outside = 0;
+  for (std::size_t f = 0; f < n; ++f) {
+    const int c = cc.component[f];
+    if (std::any_of(cut.begin(), cut.end(), [&](const CutSegment& s) { return s.component == c && !apart(s.box, box[f]); }))
+      continue;
+    const bool in_cap = c == 0 ? in_square(images[f], -4, 4) && !in_square(images[f], -1, 1)
+                               : CGAL::to_double(images[f].point.x()) > -2.5 && CGAL::to_double(images[f].point.x()) < -1.5 &&
+                                     CGAL::to_double(images[f].point.y()) > -2.5 && CGAL::to_double(images[f].point.y()) < -1.5;
+    expected[f] = in_cap ? 1 : -1;
+    (in_cap ? inside : outside)++;
+  }
+  ASSERT_GT(inside, 1000);
+  ASSERT_GT(outside, 1000);
+  for (const int threads : {1, 2, 3})
+    EXPECT_EQ(cap_sides(cc, cut, candidate, box, point, threads), expected) << threads << " threads";
+}
+
 // A scene of triangles (each a face) over the given corners.
 Scene triangles(std::vector<Vec3> corners, std::vector<IndexRing> faces) {
   Scene s;
