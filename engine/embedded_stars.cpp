@@ -21,7 +21,7 @@ bool plain_triangle(const Facet& f) {
 
 // A plain triangle's corners, turned counter-clockwise on the screen: their
 // canonical ids and their images' places in ScreenScene::images (a facet is
-// 208 bytes: the stars are made from this table, read in one pass).
+// 144 bytes: the stars are made from this table, read in one pass).
 struct Triangle {
   VertexId id[3];
   std::uint32_t place[3];

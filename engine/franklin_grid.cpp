@@ -91,20 +91,20 @@ std::array<Corner, 4> corners(const Grid& g, int ix, int iy) {
           Corner{g.X[ix], g.Y[iy + 1]}};
 }
 
-bool same_plane(const Facet& f, const Facet& b) { return f.plane == b.plane; }
+bool same_plane(const Facet& f, const Facet& b) { return *f.plane == *b.plane; }
 
 // sign(depth of f - depth of b) at corner p.
 CGAL::Sign depth_order(const Facet& f, const Facet& b, const Corner& p) {
   return filtered_sign(
       [&] {
-        return (f.plane.approx(0) - b.plane.approx(0)) * p.x + (f.plane.approx(1) - b.plane.approx(1)) * p.y +
-               (f.plane.approx(2) - b.plane.approx(2));
+        return (f.plane->approx(0) - b.plane->approx(0)) * p.x + (f.plane->approx(1) - b.plane->approx(1)) * p.y +
+               (f.plane->approx(2) - b.plane->approx(2));
       },
       [&]() -> mpq_class {
         // Mostly facets in one plane (a flat part of a mesh): their exact planes,
         // computed once per facet, are compared instead of evaluated at p.
         if (same_plane(f, b)) return 0;
-        const auto F = f.plane.exact(), B = b.plane.exact();
+        const auto F = f.plane->exact(), B = b.plane->exact();
         return (F[0] - B[0]) * p.x + (F[1] - B[1]) * p.y + (F[2] - B[2]);
       });
 }
@@ -168,11 +168,11 @@ CGAL::Sign depth_above(const P3& p, const Facet& f, const std::vector<Vec3>* wor
   return filtered_sign(
       [&] {
         return approx_of(p.z) -
-               (f.plane.approx(0) * approx_of(p.x) + f.plane.approx(1) * approx_of(p.y) + f.plane.approx(2));
+               (f.plane->approx(0) * approx_of(p.x) + f.plane->approx(1) * approx_of(p.y) + f.plane->approx(2));
       },
       [&]() -> mpq_class {
         if (world && id >= 0 && in_world_plane(*world, id, f)) return 0;
-        const auto F = f.plane.exact();
+        const auto F = f.plane->exact();
         return to_mpq(p.z) - (F[0] * to_mpq(p.x) + F[1] * to_mpq(p.y) + F[2]);
       });
 }
@@ -817,8 +817,8 @@ bool intersection_segment(const Facet& A, const Facet& B, const std::vector<Vec3
       if (shared >= 0 && common_edge(A, B, shared, A.id[k])) return false;
       shared = A.id[k];
     }
-  FT da = A.plane.number(0) - B.plane.number(0), db = A.plane.number(1) - B.plane.number(1),
-     dc = A.plane.number(2) - B.plane.number(2);
+  FT da = A.plane->number(0) - B.plane->number(0), db = A.plane->number(1) - B.plane->number(1),
+     dc = A.plane->number(2) - B.plane->number(2);
   // The crossing line: da x + db y + dc = 0, as p0 + t d. (da, db) != (0, 0):
   // each facet has corners strictly on both sides of the other's plane, so the
   // planes are neither equal nor parallel.

@@ -110,24 +110,24 @@ CGAL::Sign edge_across(const P3& p, const P3& q, Probe& m) {
 CGAL::Sign depth_order(const Facet& f, const Facet& g, Probe& m) {
   return filtered_sign(
       [&] {
-        return (f.plane.approx(0) - g.plane.approx(0)) * m.ix + (f.plane.approx(1) - g.plane.approx(1)) * m.iy +
-               (f.plane.approx(2) - g.plane.approx(2));
+        return (f.plane->approx(0) - g.plane->approx(0)) * m.ix + (f.plane->approx(1) - g.plane->approx(1)) * m.iy +
+               (f.plane->approx(2) - g.plane->approx(2));
       },
       [&]() -> mpq_class {
         if (holds_curve(f, m) && holds_curve(g, m)) return 0;   // (both hold m, on their common edge)
-        if (uncounted([&] { return f.plane == g.plane; })) return 0;
+        if (uncounted([&] { return *f.plane == *g.plane; })) return 0;
         m.need_exact();
-        const auto F = f.plane.exact(), G = g.plane.exact();
+        const auto F = f.plane->exact(), G = g.plane->exact();
         return (F[0] - G[0]) * m.ex + (F[1] - G[1]) * m.ey + (F[2] - G[2]);
       });
 }
 
 CGAL::Sign slope_order(const Facet& f, const Facet& g, Probe& m) {
   return filtered_sign(
-      [&] { return (f.plane.approx(1) - g.plane.approx(1)) * m.idx - (f.plane.approx(0) - g.plane.approx(0)) * m.idy; },
+      [&] { return (f.plane->approx(1) - g.plane->approx(1)) * m.idx - (f.plane->approx(0) - g.plane->approx(0)) * m.idy; },
       [&]() -> mpq_class {
         m.need_direction();
-        const auto F = f.plane.exact(), G = g.plane.exact();
+        const auto F = f.plane->exact(), G = g.plane->exact();
         return (F[1] - G[1]) * m.edx - (F[0] - G[0]) * m.edy;
       });
 }
@@ -137,7 +137,7 @@ CGAL::Sign depth_against_curve(const Facet& f, Probe& m) {
       [&] {
         const Interval lambda = m.x_moves ? (m.ix - approx_of(m.s->x)) / m.idx : (m.iy - approx_of(m.s->y)) / m.idy;
         const Interval z = approx_of(m.s->z) + lambda * (approx_of(m.t->z) - approx_of(m.s->z));
-        return f.plane.approx(0) * m.ix + f.plane.approx(1) * m.iy + f.plane.approx(2) - z;
+        return f.plane->approx(0) * m.ix + f.plane->approx(1) * m.iy + f.plane->approx(2) - z;
       },
       [&]() -> mpq_class {
         if (curve_in_plane(f, m)) return 0;
@@ -145,7 +145,7 @@ CGAL::Sign depth_against_curve(const Facet& f, Probe& m) {
         const mpq_class lambda = m.x_moves ? mpq_class((m.ex - to_mpq(m.s->x)) / m.edx)
                                            : mpq_class((m.ey - to_mpq(m.s->y)) / m.edy);
         const mpq_class z = to_mpq(m.s->z) + lambda * (to_mpq(m.t->z) - to_mpq(m.s->z));
-        const auto F = f.plane.exact();
+        const auto F = f.plane->exact();
         return F[0] * m.ex + F[1] * m.ey + F[2] - z;
       });
 }

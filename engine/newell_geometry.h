@@ -68,8 +68,8 @@ inline CGAL::Sign cross_sign(const P3& p, const P3& q, const P3& s, const P3& t)
 
 // Where the planes of facets F and G cross: f = depth_F - depth_G.
 inline Line plane_crossing(const Facet& F, const Facet& G) {
-  return {F.plane.number(0) - G.plane.number(0), F.plane.number(1) - G.plane.number(1),
-          F.plane.number(2) - G.plane.number(2)};
+  return {F.plane->number(0) - G.plane->number(0), F.plane->number(1) - G.plane->number(1),
+          F.plane->number(2) - G.plane->number(2)};
 }
 
 // The line through screen points p and q (positive to the left of p -> q).
@@ -88,7 +88,7 @@ inline std::pair<FT, FT> edge_crossing(const P3& a, const P3& b, const Line& f) 
 
 // The depth of facet F's plane at (x, y).
 inline FT depth_of(const Facet& F, const FT& x, const FT& y) {
-  return F.plane.number(0) * x + F.plane.number(1) * y + F.plane.number(2);
+  return F.plane->number(0) * x + F.plane->number(1) * y + F.plane->number(2);
 }
 
 // Which sides of a line (or plane) a polygon has vertices strictly on.
@@ -111,11 +111,11 @@ inline int sides_of(const std::vector<P3>& v, const Line& f) {
 inline CGAL::Sign plane_side(const P3& p, const Facet& G, const std::vector<Vec3>* world = nullptr, long id = -1) {
   return filtered_sign(
       [&] {
-        return p.z.approx() - (G.plane.approx(0) * p.x.approx() + G.plane.approx(1) * p.y.approx() + G.plane.approx(2));
+        return p.z.approx() - (G.plane->approx(0) * p.x.approx() + G.plane->approx(1) * p.y.approx() + G.plane->approx(2));
       },
       [&]() -> mpq_class {
         if (world && id >= 0 && in_world_plane(*world, id, G)) return 0;
-        const auto P = G.plane.exact();
+        const auto P = G.plane->exact();
         return to_mpq(p.z) - (P[0] * to_mpq(p.x) + P[1] * to_mpq(p.y) + P[2]);
       });
 }

@@ -151,7 +151,7 @@ class DepthSort {
   bool same_plane(int f, int g) const {
     if (f == g) return true;
     const Facet &F = ss_.facets[f], &G = ss_.facets[g];
-    return F.plane == G.plane;
+    return *F.plane == *G.plane;
   }
 
   int add(Fragment f) {

@@ -421,7 +421,7 @@ struct CurveMaker {
   const ExactSource* exact = nullptr;   // (the screen scene's)
   std::vector<std::vector<P3>> clip_edges;   // per facet: its cut by the near plane (perspective only)
   bool cut(int facet) const { return !clip_edges.empty() && !clip_edges[static_cast<std::size_t>(facet)].empty(); }
-  // Per facet, what make() asks of it, side by side (a facet is 208 bytes: its
+  // Per facet, what make() asks of it, side by side (a facet is 144 bytes: its
   // sharers' facets were most of make()'s cache misses): its facing, whether it
   // has corners (not culled before projection or by the near plane), and
   // whether it hides and labels (as culling left it).
@@ -936,18 +936,12 @@ bool parallel_to_screen(const ScreenScene& ss, const Facet& f) {
 // Else depth = a x + b y + c from three vertices that are not collinear on
 // screen: intervals from the vertices' (exact values from the world, on
 // demand), or, where no three vertices' intervals can tell, computed once in GMP.
-void make_depth_plane(Facet& f, const ExactSource& exact, std::uint32_t fi, bool parallel) {
-  if (parallel) {
-    f.plane = DepthPlane::of_doubles(0, 0, approx_of(f.v[0].z).inf());
-    return;
-  }
+DepthPlane depth_plane_of(const Facet& f, const ExactSource& exact, std::uint32_t fi, bool parallel) {
+  if (parallel) return DepthPlane::of_doubles(0, 0, approx_of(f.v[0].z).inf());
   const std::size_t nv = f.v.size();
   std::array<Interval, 3> abc;
   for (std::size_t k = 1; k + 1 < nv; ++k)
-    if (depth_plane(f.v[0], f.v[k], f.v[k + 1], abc)) {
-      f.plane = DepthPlane::of_source(abc[0], abc[1], abc[2], exact, fi);
-      return;
-    }
+    if (depth_plane(f.v[0], f.v[k], f.v[k + 1], abc)) return DepthPlane::of_source(abc[0], abc[1], abc[2], exact, fi);
   const Num x0 = num(f.v[0].x), y0 = num(f.v[0].y), z0 = num(f.v[0].z);
   for (std::size_t k = 1; k + 1 < nv; ++k) {
     const P3 &p1 = f.v[k], &p2 = f.v[k + 1];
@@ -956,9 +950,17 @@ void make_depth_plane(Facet& f, const ExactSource& exact, std::uint32_t fi, bool
     const Num nz = x1 * y2 - y1 * x2;
     if (nz == 0) continue;
     const Num a = (z1 * y2 - y1 * z2) / nz, b = (x1 * z2 - z1 * x2) / nz;
-    f.plane = DepthPlane::of_rationals(to_mpq(a), to_mpq(b), to_mpq(Num(z0 - a * x0 - b * y0)), exact, fi);
-    return;
+    return DepthPlane::of_rationals(to_mpq(a), to_mpq(b), to_mpq(Num(z0 - a * x0 - b * y0)), exact, fi);
   }
+  return DepthPlane{};   // (no three corners span it on screen: the zero plane, as a default-made one)
+}
+
+// Facet fi's depth plane made, kept in `store` (room reserved beforehand: it
+// never moves), and pointed at.
+void make_depth_plane(Facet& f, const ExactSource& exact, std::uint32_t fi, bool parallel,
+                      std::vector<DepthPlane>& store) {
+  store.push_back(depth_plane_of(f, exact, fi, parallel));
+  f.plane = &store.back();
 }
 
 // Where most pieces are drawn (a small crease angle on a dense mesh), nearly
@@ -1090,7 +1092,8 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     std::int64_t outside = 0, edge_on = 0;
   };
   std::vector<Culled> culled(static_cast<std::size_t>(chunk_count(nf, facets_per_chunk)));
-  auto project_facet = [&](std::size_t fi, Facet& f, std::int64_t& outside, std::int64_t& edge_on) {
+  auto project_facet = [&](std::size_t fi, Facet& f, std::int64_t& outside, std::int64_t& edge_on,
+                           std::vector<DepthPlane>& planes) {
     const WorldFacet& w = wf.facets[fi];
     f.face = w.face;
     f.planar = w.planar;
@@ -1157,11 +1160,15 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     // its cells list (make_depth_planes).
     const bool parallel = parallel_to_screen(ss, f);
     if (!parallel) exact->spanning[fi] = spanning_ids(scene, w);
-    if (!latent) make_depth_plane(f, *exact, static_cast<std::uint32_t>(fi), parallel);
+    if (!latent) make_depth_plane(f, *exact, static_cast<std::uint32_t>(fi), parallel, planes);
   };
+  // (A chunk's planes in a vector of their own, its room made with its first facet.)
+  ss.planes.resize(culled.size());
   ss.facets = parallel_make<Facet>(nf, facets_per_chunk, threads, [&](int c, int fi, Facet& f) {
     auto& [outside, edge_on] = culled[static_cast<std::size_t>(c)];
-    project_facet(static_cast<std::size_t>(fi), f, outside, edge_on);
+    std::vector<DepthPlane>& planes = ss.planes[static_cast<std::size_t>(c)];
+    if (!latent && planes.capacity() == 0) planes.reserve(static_cast<std::size_t>(facets_per_chunk));
+    project_facet(static_cast<std::size_t>(fi), f, outside, edge_on, planes);
   });
   std::int64_t outside = 0, edge_on = 0;
   for (const Culled& c : culled) {
@@ -1307,13 +1314,19 @@ void make_corner_images(ScreenScene& ss, const std::vector<char>& which, int thr
 
 const WorldFacets* world_facets_of(const ScreenScene& ss) { return ss.maker ? &ss.maker->wf : nullptr; }
 void make_depth_planes(ScreenScene& ss, const std::vector<char>& which, int threads) {
-  parallel_chunks(static_cast<int>(ss.facets.size()), 4096, threads, [&](int, Chunk r) {
+  const int nf = static_cast<int>(ss.facets.size()), size = 4096;
+  std::vector<std::vector<DepthPlane>> made(static_cast<std::size_t>(chunk_count(nf, size)));
+  parallel_chunks(nf, size, threads, [&](int k, Chunk r) {
+    std::vector<DepthPlane>& planes = made[static_cast<std::size_t>(k)];
+    planes.reserve(static_cast<std::size_t>(std::count(which.begin() + r.begin, which.begin() + r.end, 1)));
     for (int fi = r.begin; fi < r.end; ++fi)
       if (which[static_cast<std::size_t>(fi)]) {
         Facet& f = ss.facets[fi];
-        make_depth_plane(f, *ss.exact, static_cast<std::uint32_t>(fi), parallel_to_screen(ss, f));
+        make_depth_plane(f, *ss.exact, static_cast<std::uint32_t>(fi), parallel_to_screen(ss, f), planes);
       }
   });
+  // (Moved vectors keep their items where they are: the facets' pointers hold.)
+  for (std::vector<DepthPlane>& planes : made) ss.planes.push_back(std::move(planes));
 }
 
 const std::vector<WorldPiece>* latent_pieces_of(const ScreenScene& ss) { return ss.maker ? &ss.maker->pieces : nullptr; }

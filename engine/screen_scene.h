@@ -98,10 +98,10 @@ class DepthPlane {
   std::uint32_t facet_ = 0;
 };
 
-// (The small fields first, packed: 208 bytes, 64 of them the depth plane; a
-// million facets are common. Boxes and depth ranges stay doubles: an
-// orthographic view does not translate, and a float's step near a
-// georeferenced 5e6 is 0.5.)
+// (The small fields first, packed: 144 bytes, the depth plane held apart (a
+// lines-only drawing makes few); a million facets are common. Boxes and depth
+// ranges stay doubles: an orthographic view does not translate, and a float's
+// step near a georeferenced 5e6 is 0.5.)
 struct Facet {
   int face = -1;                 // input face index
   Facing facing = Facing::EdgeOn;
@@ -121,9 +121,10 @@ struct Facet {
   SmallVec<VertexId, 4> id;      // id[k]: v[k]'s canonical vertex id, or -1 where the near
                                  // plane cut the polygon (as Curve::vs): connectivity answers
                                  // some predicates without arithmetic
-  DepthPlane plane;              // depth(x, y) = a x + b y + c   (not edge-on)
+  const DepthPlane* plane = nullptr;   // depth(x, y) = a x + b y + c (not edge-on), kept in
+                                       // ScreenScene::planes; null until made
   CGAL::Bbox_2 box;              // contains the exact projection
-  FT depth_at(const P2& p) const { return plane.number(0) * p.x() + plane.number(1) * p.y() + plane.number(2); }
+  FT depth_at(const P2& p) const { return plane->number(0) * p.x() + plane->number(1) * p.y() + plane->number(2); }
   // Whether canonical vertex v (not -1) is a corner: then it lies in the plane.
   bool has_vertex(long v) const { return v >= 0 && std::find(id.begin(), id.end(), v) != id.end(); }
 };
@@ -158,6 +159,10 @@ struct ScreenScene {
   // those it needs), each one's intervals, by place; else empty.
   std::vector<ImageBounds> image_bounds;
   std::vector<Facet> facets;
+  // The facets' depth planes, in chunks that never move (Facet::plane points
+  // into them): every facet's, or where a lines-only drawing leaves them for
+  // later, those make_depth_planes makes.
+  std::vector<std::vector<DepthPlane>> planes;
   // Per facet: its component where that is known not to meet itself (a closed
   // one that closed_components took as such, having tested it: engine/culling.h;
   // an open surface that is a graph over a plane, engine/height_fields.h), else

@@ -875,7 +875,8 @@ TEST(Threads, SharedPointsKeepTheirIntervalsOnceExact) {
   C.s = &s;
   C.t = &t;
   vismap::engine::Facet F;
-  F.plane = vismap::engine::DepthPlane::of_doubles(0.125, -0.25, 0.0625);   // (s above it, t below)
+  const auto plane = vismap::engine::DepthPlane::of_doubles(0.125, -0.25, 0.0625);   // (s above it, t below)
+  F.plane = &plane;
   auto plane_crossing_again = [&] {   // (its own DAG: the same formula on fresh numbers)
     const P3 s2(x(), y(), FT(1) / FT(3)), t2(FT(5) / FT(3), FT(7) / FT(9), FT(-2) / FT(3));
     Curve C2;
