@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <vector>
 
 #include "arrangements/visibility_map.h"
 
@@ -20,6 +21,32 @@ void append_digits(std::string& out, const mpq_class& q) {
   out.resize(at + std::strlen(out.data() + at));
 }
 
+// The decimal digits of 2^k, made once per thread: an orthographic view's
+// coordinates are fractions over powers of two, and a map's vertices share a
+// few dozen of them (the denominator was half of each number's conversion).
+const std::string& power_of_two_digits(mp_bitcnt_t k) {
+  thread_local std::vector<std::string> made;
+  if (k >= made.size()) made.resize(k + 1);
+  std::string& digits = made[k];
+  if (digits.empty()) {
+    mpz_class p;
+    mpz_setbit(p.get_mpz_t(), k);
+    digits = p.get_str();
+  }
+  return digits;
+}
+
+// n/2^k's digits after `out`, as mpq_get_str prints them (n alone for k = 0).
+void append_dyadic_digits(std::string& out, mpz_srcptr n, mp_bitcnt_t k) {
+  const std::size_t at = out.size();
+  out.resize(at + mpz_sizeinbase(n, 10) + 2);
+  mpz_get_str(out.data() + at, 10, n);
+  out.resize(at + std::strlen(out.data() + at));
+  if (k == 0) return;
+  out += '/';
+  out += power_of_two_digits(k);
+}
+
 }  // namespace
 
 void append_canonical(std::string& out, const mpq_class& q) {
@@ -30,7 +57,8 @@ void append_canonical(std::string& out, const mpq_class& q) {
   const mpz_srcptr num = q.get_num_mpz_t(), den = q.get_den_mpz_t();
   const mp_bitcnt_t twos = mpz_scan1(den, 0);
   if (mpz_sgn(den) > 0 && mpz_sizeinbase(den, 2) == twos + 1 && (twos == 0 || mpz_odd_p(num))) {
-    append_digits(out, q);
+    if (twos < 4096) append_dyadic_digits(out, num, twos);   // (beyond: rare, not kept)
+    else append_digits(out, q);
     return;
   }
   mpq_class c(q);

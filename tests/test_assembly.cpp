@@ -306,6 +306,26 @@ TEST(Canonical, LowestTermsWhateverTheInput) {
   std::string s = "x=";
   append_canonical(s, raw(10, 4));
   EXPECT_EQ(s, "x=5/2");
+  // Fractions over powers of two (their denominators' digits kept once made):
+  // GMP's own text, for numerators of every size and exponents on both sides
+  // of the kept ones, twice each (made, then kept).
+  std::mt19937_64 rng(5);
+  for (const unsigned long k : {0ul, 1ul, 52ul, 53ul, 64ul, 100ul, 1074ul, 4095ul, 4096ul, 5000ul})
+    for (int round = 0; round < 2; ++round)
+      for (const int limbs : {1, 2, 5}) {
+        mpz_class n = 1;
+        for (int l = 0; l < limbs; ++l) n = (n << 64) + mpz_class(std::to_string(rng()));
+        n = n * 2 + 1;   // (odd: lowest terms)
+        if (rng() % 2) n = -n;
+        mpq_class q;
+        q.get_num() = n;
+        mpz_setbit(q.get_den_mpz_t(), k);
+        mpz_clrbit(q.get_den_mpz_t(), 0);
+        if (k == 0) q.get_den() = 1;
+        std::string t = "p ";
+        append_canonical(t, q);
+        EXPECT_EQ(t, "p " + q.get_str()) << "2^" << k;
+      }
 }
 
 }  // namespace
