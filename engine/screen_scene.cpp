@@ -22,6 +22,20 @@ namespace vismap::engine {
 VISMAP_KERNEL_BEGIN
 namespace {
 
+// Two counts kept per chunk of facets, side by side on the threads (a cache
+// line each), then summed.
+struct alignas(64) ChunkCounts {
+  std::int64_t first = 0, second = 0;
+};
+std::pair<std::int64_t, std::int64_t> summed(const std::vector<ChunkCounts>& counts) {
+  std::pair<std::int64_t, std::int64_t> total{0, 0};
+  for (const ChunkCounts& c : counts) {
+    total.first += c.first;
+    total.second += c.second;
+  }
+  return total;
+}
+
 struct Homogeneous {
   FT X, Y, Z, W;
 };
@@ -875,14 +889,11 @@ void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& vie
     });
     cap_side = cap_sides(cc, cut.segments, candidate, facet_box, point, threads);
   }
-  // What is culled, counted per chunk. A closed component taken as such does not
-  // meet itself (closed_components): a solid, whose facets never pierce each other.
-  struct alignas(64) Culled {   // (a cache line each: the chunks count side by side)
-    std::int64_t back = 0, front = 0;
-  };
-  std::vector<Culled> culled(static_cast<std::size_t>(chunk_count(nf, 16384)));
+  // What is culled, counted per chunk (back, front). A closed component taken as such
+  // does not meet itself (closed_components): a solid, whose facets never pierce each other.
+  std::vector<ChunkCounts> culled(static_cast<std::size_t>(chunk_count(nf, 16384)));
   parallel_chunks(nf, 16384, threads, [&](int k, Chunk r) {
-    Culled& count = culled[static_cast<std::size_t>(k)];
+    auto& [back, front] = culled[static_cast<std::size_t>(k)];
     for (auto fi = static_cast<std::size_t>(r.begin); fi < static_cast<std::size_t>(r.end); ++fi) {
       if (cc.side[fi] != 0) ss.solid[fi] = cc.component[fi];
       Facet& f = ss.facets[fi];
@@ -890,18 +901,14 @@ void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& vie
       if (seen_from_outside(fi)) {
         if (cap_side[fi] <= 0) continue;
         f.occluder = false;
-        ++count.front;
+        ++front;
       } else if (hidden_back[fi] || cap_side[fi] < 0) {
         f.occluder = false;
-        ++count.back;
+        ++back;
       }
     }
   });
-  std::int64_t back = 0, front = 0;
-  for (const Culled& c : culled) {
-    back += c.back;
-    front += c.front;
-  }
+  const auto [back, front] = summed(culled);
   stats.count("culled_back_faces", back);
   stats.count("culled_front_faces_in_caps", front);
   stats.count("near_plane_caps", static_cast<std::int64_t>(caps.size()));
@@ -1085,13 +1092,10 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     M.make_clips(threads);
   }
   // Each facet on its own (in parallel, chunks of them): its screen polygon,
-  // facing and depth plane. What a chunk culled is counted in its slot.
+  // facing and depth plane. What a chunk culled is counted in its slot (outside, edge-on).
   const int nf = static_cast<int>(wf.facets.size());
   const int facets_per_chunk = 512;
-  struct alignas(64) Culled {   // (a cache line each: the chunks count side by side)
-    std::int64_t outside = 0, edge_on = 0;
-  };
-  std::vector<Culled> culled(static_cast<std::size_t>(chunk_count(nf, facets_per_chunk)));
+  std::vector<ChunkCounts> culled(static_cast<std::size_t>(chunk_count(nf, facets_per_chunk)));
   auto project_facet = [&](std::size_t fi, Facet& f, std::int64_t& outside, std::int64_t& edge_on,
                            std::vector<DepthPlane>& planes) {
     const WorldFacet& w = wf.facets[fi];
@@ -1170,11 +1174,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     if (!latent && planes.capacity() == 0) planes.reserve(static_cast<std::size_t>(facets_per_chunk));
     project_facet(static_cast<std::size_t>(fi), f, outside, edge_on, planes);
   });
-  std::int64_t outside = 0, edge_on = 0;
-  for (const Culled& c : culled) {
-    outside += c.outside;
-    edge_on += c.edge_on;
-  }
+  const auto [outside, edge_on] = summed(culled);
   stats.count("culled_outside_view", outside);
   stats.count("culled_edge_on", edge_on);
 
