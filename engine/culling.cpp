@@ -43,35 +43,66 @@ void drop_meeting_themselves(const Scene& scene, const WorldFacets& wf, const st
     if (meets[k]) closed[static_cast<std::size_t>(comp[static_cast<std::size_t>(members[k][0])])] = 0;
 }
 
-}  // namespace
-
-ClosedComponents closed_components(const Scene& scene, const WorldFacets& wf, const std::vector<WorldPiece>& pieces,
-                                   int threads) {
-  const int n = static_cast<int>(wf.facets.size()), np = static_cast<int>(pieces.size());
+// Facets joined across the pieces they share (`only_pairs`: only across those
+// that exactly two facets share), on the threads: each facet's component, the
+// lowest facet number in it.
+std::vector<int> joined_facets(int n, const std::vector<WorldPiece>& pieces, bool only_pairs, int threads) {
+  const int np = static_cast<int>(pieces.size());
   // (Joined on the threads: a component's number is then its first facet.)
   ConcurrentUnionFind uf(static_cast<std::size_t>(n));
   parallel_chunks(np, 16384, threads, [&](int, Chunk r) {
     for (int i = r.begin; i < r.end; ++i) {
       const auto& s = pieces[static_cast<std::size_t>(i)].sharers;
+      if (only_pairs && s.size() != 2) continue;
       for (std::size_t k = 1; k < s.size(); ++k) uf.join(s[0].facet, s[k].facet);
     }
   });
-  // Each facet's component, once (the loops below read it on several threads).
+  // Each facet's component, once (the loops that follow read it on several threads).
   std::vector<int> comp(static_cast<std::size_t>(n));
   parallel_chunks(n, 16384, threads, [&](int, Chunk r) {
     for (int f = r.begin; f < r.end; ++f) comp[f] = uf.find(f);
   });
+  return comp;
+}
+
+}  // namespace
+
+ClosedComponents closed_components(const Scene& scene, const WorldFacets& wf, const std::vector<WorldPiece>& pieces,
+                                   int threads) {
+  const int n = static_cast<int>(wf.facets.size()), np = static_cast<int>(pieces.size());
+  // Shells: facets joined where exactly two share a piece. Where more share one
+  // (solids touching along an edge or a face: a building's annex against its
+  // wall), each solid is still a shell of its own, closed if its facets close it,
+  // and hides its own faces whatever touches it; the connected components (joined
+  // across every shared piece) are kept apart for the height fields.
+  const bool all_pairs = std::none_of(pieces.begin(), pieces.end(), [](const WorldPiece& p) { return p.sharers.size() > 2; });
+  ClosedComponents cc;
+  if (!all_pairs) cc.connected = joined_facets(n, pieces, /*only_pairs=*/false, threads);
+  std::vector<int> comp = joined_facets(n, pieces, /*only_pairs=*/!all_pairs, threads);
   std::vector<char> closed(n, 1);
   auto open = [&](int f) {
     std::atomic_ref<char>(closed[static_cast<std::size_t>(comp[f])]).store(0, std::memory_order_relaxed);
   };
-  // A piece closes the surface when exactly two facets share it, traversing it in
-  // opposite directions (consistent orientation).
+  // A piece closes a shell when exactly two of its facets share it, traversing it
+  // in opposite directions (consistent orientation).
   parallel_chunks(np, 16384, threads, [&](int, Chunk r) {
     for (int i = r.begin; i < r.end; ++i) {
       const auto& s = pieces[static_cast<std::size_t>(i)].sharers;
-      if (!(s.size() == 2 && s[0].forward != s[1].forward))
+      if (s.size() == 2 && s[0].forward != s[1].forward) continue;
+      if (s.size() <= 2) {
         for (const auto& sharer : s) open(sharer.facet);
+        continue;
+      }
+      for (const auto& a : s) {
+        int same = 0;
+        bool opposite = false;
+        for (const auto& b : s)
+          if (comp[b.facet] == comp[a.facet]) {
+            ++same;
+            opposite |= b.forward != a.forward;
+          }
+        if (same != 2 || !opposite) open(a.facet);
+      }
     }
   });
   // A non-planar polygon's fan can fold over the polygon's own edge, and a face
@@ -82,7 +113,6 @@ ClosedComponents closed_components(const Scene& scene, const WorldFacets& wf, co
       if (!wf.facets[f].planar) open(f);
   });
   drop_meeting_themselves(scene, wf, comp, closed, threads);
-  ClosedComponents cc;
   cc.side.assign(n, 0);
   // (An open surface, a terrain: no orientation to find, and no per-component
   // sums to make room for, 28 bytes per facet.)
@@ -169,21 +199,30 @@ ClosedComponents closed_components(const Scene& scene, const WorldFacets& wf, co
 
 std::vector<NearCap> near_caps(const WorldFacets& wf, const std::vector<WorldPiece>& pieces,
                                const ClosedComponents& cc, const NearPlane& np) {
-  // The cut's curves: facets of closed components joined where the near plane
+  // The cut's curves: facets of closed shells joined where the near plane
   // passes from one to the other, across a piece that crosses or touches it
   // (a vertex on the plane joins every facet around it). Each connected curve
-  // then lies within one set.
+  // then lies within one set, of one shell.
   const int n = static_cast<int>(wf.facets.size());
   UnionFind uf(static_cast<std::size_t>(n));
   std::vector<char> touched(n, 0);
+  auto closed = [&](const Sharer& s) { return cc.side[s.facet] != 0; };
   for (const WorldPiece& p : pieces) {
-    if (p.sharers.empty() || cc.side[p.sharers[0].facet] == 0) continue;
+    if (std::none_of(p.sharers.begin(), p.sharers.end(), closed)) continue;
     const int za = np.z_sign(p.a), zb = np.z_sign(p.b);
     if (za > 0 && zb > 0) continue;
     if ((za > 0) == (zb > 0) && za != 0 && zb != 0) continue;   // wholly behind
-    for (const Sharer& s : p.sharers) {
-      touched[s.facet] = 1;
-      uf.join(p.sharers[0].facet, s.facet);
+    // (Each sharer joined to the first of its own shell: solids that touch along
+    // the piece have cuts, and caps, of their own.)
+    for (std::size_t i = 0; i < p.sharers.size(); ++i) {
+      if (!closed(p.sharers[i])) continue;
+      const int f = p.sharers[i].facet;
+      touched[f] = 1;
+      for (std::size_t j = 0; j < i; ++j)
+        if (cc.component[p.sharers[j].facet] == cc.component[f]) {
+          uf.join(p.sharers[j].facet, f);
+          break;
+        }
     }
   }
   // Each set's box: the facets' cuts and the vertices on the plane.

@@ -1,5 +1,5 @@
 // Stage 3: which facets can be skipped because they face away inside a closed,
-// consistently oriented component that does not meet itself. Decided exactly;
+// consistently oriented shell that does not meet itself. Decided exactly;
 // when in doubt (open surface, a non-planar fan, a surface crossing or touching
 // itself) nothing is culled.
 //
@@ -23,7 +23,15 @@
 namespace vismap::engine {
 
 struct ClosedComponents {
-  std::vector<int> component;        // per facet: its connected component (a facet index)
+  // Per facet: its shell (a facet index): facets joined across the pieces that
+  // exactly two facets share. Solids that touch along an edge or a face are
+  // shells apart, each closed or not on its own.
+  std::vector<int> component;
+  // Per facet: its connected component (a facet index), facets joined across
+  // every piece they share, where some piece has more than two sharers; else
+  // empty: the shells are the components.
+  std::vector<int> connected;
+  const std::vector<int>& connected_components() const { return connected.empty() ? component : connected; }
   // Per facet: +1 = part of an outward-oriented closed component that does not
   // meet itself (its back-facing facets are hidden), -1 = inward-oriented (its
   // front-facing facets are hidden), 0 = nothing can be said.

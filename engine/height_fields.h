@@ -12,7 +12,7 @@
 
 namespace vismap::engine {
 
-// Per facet: component[facet] where its component (ClosedComponents::component:
+// Per facet: component[facet] where its component (ClosedComponents::connected_components():
 // facets joined by the pieces they share) is certified to meet itself nowhere
 // (two of its facets meet only at the corners and along the edge they share),
 // else -1. Certified: a component of triangles that is a topological disk (each

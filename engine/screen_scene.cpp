@@ -1016,7 +1016,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     M.pieces = match_edges(scene, M.wf, /*cell_bits=*/20, threads);
     if (cull) {
       closed = closed_components(scene, M.wf, M.pieces, threads);
-      height_field = height_field_components(scene, M.wf, M.pieces, closed.component, threads);
+      height_field = height_field_components(scene, M.wf, M.pieces, closed.connected_components(), threads);
     }
   }
   WorldFacets& wf = M.wf;

@@ -10,7 +10,7 @@ WorldScene make_world_scene(const Scene& scene, int threads) {
   w.wf = make_world_facets(scene, threads);
   w.edges = match_edges_ranked(scene, w.wf, /*cell_bits=*/20, threads);
   w.closed = closed_components(scene, w.wf, w.edges.pieces, threads);
-  w.height_field = height_field_components(scene, w.wf, w.edges.pieces, w.closed.component, threads);
+  w.height_field = height_field_components(scene, w.wf, w.edges.pieces, w.closed.connected_components(), threads);
   w.counted.calls = exact::filter_counts.calls - before.calls;
   w.counted.exact = exact::filter_counts.exact - before.exact;
   return w;

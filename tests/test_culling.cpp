@@ -228,12 +228,64 @@ TEST(ClosedComponents, SurfacesThatCrossThemselvesAreNotClosed) {
   }
 }
 
+// Closed boxes that touch (tests/data/boxes_touching.off): an annex against the
+// first box's wall, sharing parts of two of its edges (pieces of four sharers),
+// a box meeting it along a whole upright edge, and one standing on its roof.
+// Each box is a closed shell of its own, whatever touches it; the first three
+// are one connected component. A box left open (its roof taken away), or with
+// a face turned the other way, is not closed, and the others still are.
+TEST(ClosedComponents, SolidsThatTouchAreShellsOfTheirOwn) {
+  auto boxes = [](int drop_face, int flip_face) {
+    Scene s;
+    s.file = "boxes";
+    const std::array<std::array<double, 6>, 4> at = {{{0, 0, 0, 2, 1, 1},
+                                                      {2, 0, 0, 3, 0.5, 0.5},
+                                                      {-1, 1, 0, 0, 2, 1},
+                                                      {0.5, 0.25, 1, 1.5, 0.75, 1.5}}};
+    for (const auto& [x0, y0, z0, x1, y1, z1] : at) {
+      const auto b = static_cast<std::uint32_t>(s.vertices.size());
+      s.vertices.insert(s.vertices.end(), {{x0, y0, z0}, {x1, y0, z0}, {x1, y1, z0}, {x0, y1, z0},
+                                           {x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}});
+      for (const auto& q : std::vector<std::array<std::uint32_t, 4>>{
+               {0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}) {
+        if (static_cast<int>(s.faces.size()) == drop_face) { drop_face = -2; continue; }
+        IndexRing ring{b + q[0], b + q[1], b + q[2], b + q[3]};
+        if (static_cast<int>(s.faces.size()) == flip_face) std::reverse(ring.begin(), ring.end());
+        s.faces.push_back(ring);
+      }
+    }
+    return s;
+  };
+  // Per facet: its box (the facets are the quads, in file order).
+  auto box_of = [](const Scene& s, const WorldFacets& wf, std::size_t f) {
+    return static_cast<int>(s.faces[static_cast<std::size_t>(wf.facets[f].face)][0] / 8);
+  };
+  for (const auto& [drop, flip, open_box] : std::vector<std::array<int, 3>>{{-1, -1, -1}, {7, -1, 1}, {-1, 15, 2}}) {
+    const Scene s = boxes(drop, flip);
+    const WorldFacets wf = make_world_facets(s);
+    for (int threads : {1, 2}) {
+      const ClosedComponents cc = closed_components(s, wf, match_edges(s, wf, 20, threads), threads);
+      ASSERT_EQ(cc.side.size(), wf.facets.size());
+      for (std::size_t f = 0; f < wf.facets.size(); ++f) {
+        const int b = box_of(s, wf, f);
+        EXPECT_EQ(cc.side[f], b == open_box ? 0 : 1) << "facet " << f << " of box " << b << ", open box " << open_box;
+        for (std::size_t g = 0; g < f; ++g) {
+          const int c = box_of(s, wf, g);
+          EXPECT_EQ(cc.component[f] == cc.component[g], b == c) << "facets " << g << ", " << f;
+          EXPECT_EQ(cc.connected_components()[f] == cc.connected_components()[g], (b == 3) == (c == 3))
+              << "facets " << g << ", " << f;
+        }
+      }
+    }
+  }
+}
+
 // Per facet: its height-field label (or -1), on `threads` threads.
 std::vector<int> height_fields(const Scene& s, int threads = 1) {
   const WorldFacets wf = make_world_facets(s);
   const std::vector<WorldPiece> pieces = match_edges(s, wf);
   const ClosedComponents cc = closed_components(s, wf, pieces);
-  return height_field_components(s, wf, pieces, cc.component, threads);
+  return height_field_components(s, wf, pieces, cc.connected_components(), threads);
 }
 
 // Whether every facet is certified, and with one label (one component).
