@@ -108,6 +108,51 @@ inline bool equal_points(const P2& a, const P2& b) {
   return a == b;
 }
 
+// Order on points without C++ exceptions. CGAL's filtered predicates that
+// branch on a comparison (lexicographic order, order along a line) throw one
+// wherever an interval comparison is uncertain, ~2 us each; on a vertical
+// screen line whose x is not a double, every comparison of x is (a city's
+// buildings seen along an axis: a third of the whole run went to unwinding).
+// These decide on the intervals, else on the exact values; counted as CGAL's.
+#ifdef VISMAP_FLOAT_KERNEL
+inline CGAL::Comparison_result compare_xy_exactly(const P2& a, const P2& b) { return CGAL::compare_xy(a, b); }
+inline bool between_on_line(const P2& p, const P2& q, const P2& r, bool strictly) {
+  return strictly ? CGAL::collinear_are_strictly_ordered_along_line(p, q, r)
+                  : CGAL::collinear_are_ordered_along_line(p, q, r);
+}
+#else
+// a and b lexicographically (x, then y).
+inline CGAL::Comparison_result compare_xy_exactly(const P2& a, const P2& b) {
+  ++filter_counts.calls;
+  auto told = [](const Interval& u, const Interval& v, CGAL::Comparison_result& c) {
+    if (u.sup() < v.inf()) c = CGAL::SMALLER;
+    else if (v.sup() < u.inf()) c = CGAL::LARGER;
+    else if (u.is_point() && v.is_point()) c = CGAL::EQUAL;   // (not apart: the same double)
+    else return false;
+    return true;
+  };
+  CGAL::Comparison_result c;
+  if (told(approx_x(a), approx_x(b), c) && (c != CGAL::EQUAL || told(approx_y(a), approx_y(b), c))) return c;
+  ++filter_counts.exact;
+  return CGAL::compare_xy(CGAL::exact(a), CGAL::exact(b));
+}
+// Whether q lies between p and r (strictly: not at either), the three known to
+// lie on one line. Along a line, any coordinate that is not constant on it
+// orders its points: one whose intervals set q apart from p and from r decides.
+inline bool between_on_line(const P2& p, const P2& q, const P2& r, bool strictly) {
+  ++filter_counts.calls;
+  auto apart = [](const Interval& u, const Interval& v) { return u.sup() < v.inf() || v.sup() < u.inf(); };
+  for (const auto coordinate : {approx_x, approx_y}) {
+    const Interval ip = coordinate(p), iq = coordinate(q), ir = coordinate(r);
+    if (apart(ip, iq) && apart(iq, ir)) return (ip.sup() < iq.inf()) == (iq.sup() < ir.inf());
+  }
+  ++filter_counts.exact;
+  const auto &ep = CGAL::exact(p), &eq = CGAL::exact(q), &er = CGAL::exact(r);
+  return strictly ? CGAL::collinear_are_strictly_ordered_along_line(ep, eq, er)
+                  : CGAL::collinear_are_ordered_along_line(ep, eq, er);
+}
+#endif
+
 // The sign of an expression: on the intervals of its operands if they decide it,
 // else exactly in GMP rationals; counted like CGAL's own filters. For the hot
 // predicates whose lazy form would build a tree of numbers at every call.

@@ -10,6 +10,7 @@
 #include <type_traits>
 
 #include "engine/convex_inside.h"
+#include "engine/lazy_leaves.h"
 #include "engine/midpoint_probe.h"
 #include "engine/overlap_cuts.h"
 #include "engine/parallel.h"
@@ -1447,7 +1448,7 @@ struct Cutter {
   // cannot be settled by its filter.)
   static bool strictly_within(const Curve& C, const P2& p) {
     if (same_rep(p, C.s->xy()) || same_rep(p, C.t->xy())) return false;
-    return CGAL::collinear_are_strictly_ordered_along_line(C.s->xy(), p, C.t->xy());
+    return between_on_line(C.s->xy(), p, C.t->xy(), /*strictly=*/true);
   }
 
   // Cuts C and D, whose boxes meet, where they cross or touch (but where they
@@ -1473,6 +1474,7 @@ struct Cutter {
   // Where there is one, C = [p, a] and D = [p, b].
   struct CommonEnd {
     const P2 *p, *a, *b;
+    VertexId ip, ia, ib;   // their vertex ids (Curve::vs)
   };
   static std::optional<CommonEnd> common_end(const Curve& C, const Curve& D) {
     const P2 &cs = C.s->xy(), &ct = C.t->xy(), &ds = D.s->xy(), &dt = D.t->xy();   // (references: no handle copied)
@@ -1480,8 +1482,35 @@ struct Cutter {
     const bool ss_ = same(C.vs, D.vs, cs, ds), st = same(C.vs, D.vt, cs, dt), ts = same(C.vt, D.vs, ct, ds),
                tt = same(C.vt, D.vt, ct, dt);
     if (!(ss_ || st || ts || tt)) return std::nullopt;
-    const bool ps = ss_ || st;
-    return CommonEnd{ps ? &cs : &ct, ps ? &ct : &cs, (ss_ || ts) ? &dt : &ds};
+    const bool ps = ss_ || st, pd = ss_ || ts;
+    return CommonEnd{ps ? &cs : &ct, ps ? &ct : &cs, pd ? &dt : &ds,
+                     ps ? C.vs : C.vt, ps ? C.vt : C.vs, pd ? D.vt : D.vs};
+  }
+
+  // CGAL::orientation(p, q, r) of points that may be vertex images (ids, or
+  // -1): on the intervals, then three images on one screen line x = c or y = c
+  // (ExactSource::same_screen_coordinate), then exactly, fraction-free. Counted
+  // as CGAL's.
+  CGAL::Orientation orient(const P2& p, VertexId ip, const P2& q, VertexId iq, const P2& r, VertexId ir) const {
+#ifdef VISMAP_FLOAT_KERNEL
+    (void)ip, (void)iq, (void)ir;
+    return CGAL::orientation(p, q, r);
+#else
+    return filtered_sign(
+        [&] {
+          return (approx_x(q) - approx_x(p)) * (approx_y(r) - approx_y(p)) -
+                 (approx_y(q) - approx_y(p)) * (approx_x(r) - approx_x(p));
+        },
+        [&]() -> mpq_class {
+          auto same = [&](VertexId a, VertexId b, int row) {
+            return a >= 0 && b >= 0 &&
+                   ss.exact->same_screen_coordinate(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), row);
+          };
+          for (int row : {0, 1})
+            if (same(ip, iq, row) && same(ip, ir, row)) return 0;
+          return orient_sign(exact_x(p), exact_y(p), exact_x(q), exact_y(q), exact_x(r), exact_y(r));
+        });
+#endif
   }
 
   // Whether the intervals of the points tell that C and D (boxes meeting) need
@@ -1519,20 +1548,20 @@ struct Cutter {
       // same way; then the longer is cut where the shorter ends. Their depths agree
       // at p, so the depth order cannot change inside the common part.
       const P2 &p = *e->p, &a = *e->a, &b = *e->b;
-      if (CGAL::orientation(p, a, b) != CGAL::COLLINEAR || !CGAL::is_positive((a - p) * (b - p))) return true;
+      if (orient(p, e->ip, a, e->ia, b, e->ib) != CGAL::COLLINEAR || !CGAL::is_positive((a - p) * (b - p))) return true;
       row.overlaps.emplace_back(ci, di);
       if (strictly_within(C, b)) cut(ci, b);
       else if (strictly_within(D, a)) cut(di, a);
       return true;
     }
-    auto o1 = CGAL::orientation(cs, ct, ds), o2 = CGAL::orientation(cs, ct, dt);
+    auto o1 = orient(cs, C.vs, ct, C.vt, ds, D.vs), o2 = orient(cs, C.vs, ct, C.vt, dt, D.vt);
     if (o1 != CGAL::COLLINEAR && o1 == o2) return false;
     if (o1 == CGAL::COLLINEAR && o2 == CGAL::COLLINEAR) { overlap(ci, di); return true; }
     if (apart && o1 != CGAL::COLLINEAR && o2 != CGAL::COLLINEAR) {   // (a proper crossing or none)
       ++row.uncut;
       return false;
     }
-    auto o3 = CGAL::orientation(ds, dt, cs), o4 = CGAL::orientation(ds, dt, ct);
+    auto o3 = orient(ds, D.vs, dt, D.vt, cs, C.vs), o4 = orient(ds, D.vs, dt, D.vt, ct, C.vt);
     if (o3 != CGAL::COLLINEAR && o3 == o4) return false;
     if (o1 * o2 < 0 && o3 * o4 < 0) {   // proper crossing
       const P2 p = crossing_point(cs, ct, ds, dt);
@@ -1571,12 +1600,13 @@ struct Cutter {
     const Curve &C = ss.curves[ci], &D = ss.curves[di];
     const P2 &cs = C.s->xy(), &ct = C.t->xy(), &ds = D.s->xy(), &dt = D.t->xy();
     std::array<P2, 4> pts{cs, ct, ds, dt};
-    std::sort(pts.begin(), pts.end());   // lexicographic: along the line
+    auto before = [](const P2& a, const P2& b) { return compare_xy_exactly(a, b) == CGAL::SMALLER; };
+    std::sort(pts.begin(), pts.end(), before);   // lexicographic: along the line
     // Common part: the middle two, if C and D really overlap.
     const P2 &lo = pts[1], &hi = pts[2];
-    if (!(lo < hi)) return;
+    if (!before(lo, hi)) return;
     auto inside = [](const P2& a, const P2& b, const P2& p) {   // (an end point is: no predicate)
-      return same_rep(p, a) || same_rep(p, b) || CGAL::collinear_are_ordered_along_line(a, p, b);
+      return same_rep(p, a) || same_rep(p, b) || between_on_line(a, p, b, /*strictly=*/false);
     };
     if (!(inside(cs, ct, lo) && inside(cs, ct, hi) && inside(ds, dt, lo) && inside(ds, dt, hi))) return;
     row.overlaps.emplace_back(ci, di);

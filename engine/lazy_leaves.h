@@ -133,6 +133,17 @@ struct ExactSource {
 
   // Row r of the view applied to input vertex v, times 2^k if scaled (Mpzf below).
   CGAL::Mpzf row_at(int r, std::uint32_t v, bool scaled) const;
+  // Whether input vertices a and b have one screen coordinate r (0: x, 1: y) in
+  // an orthographic view, told by the world with no arithmetic: equal in every
+  // coordinate the row reads (only where it says so). A view along an axis puts
+  // many images on one screen line, whose coordinate is not a double where the
+  // row's entry is not a power of two, and no interval filter tells them equal.
+  bool same_screen_coordinate(std::uint32_t a, std::uint32_t b, int r) const {
+    if (perspective) return false;
+    const auto& row = m[static_cast<std::size_t>(r)];
+    const Vec3 &p = (*vertices)[a], &q = (*vertices)[b];
+    return (row[0] == 0 || p.x == q.x) && (row[1] == 0 || p.y == q.y) && (row[2] == 0 || p.z == q.z);
+  }
 
   // Facet f's depth plane z = a x + b y + c on the (scaled) screen: the image of
   // its world plane. The three corners' homogeneous images H_i = M (p_i, 1) are

@@ -161,7 +161,7 @@ struct Cutter {
 
   // p lies on C's line strictly between its end points.
   static bool inside(const Curve& C, const P2& p) {
-    return CGAL::collinear_are_strictly_ordered_along_line(C.s->xy(), p, C.t->xy());
+    return between_on_line(C.s->xy(), p, C.t->xy(), /*strictly=*/true);
   }
 
   void pair(int ci, int di) {

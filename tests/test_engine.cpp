@@ -442,6 +442,87 @@ TEST(ProjectedBounds, HoldTheExactValueAsTightlyAsMpzf) {
   EXPECT_EQ(as_mpzf, checked);
 }
 
+// Images on one screen line, told by the world (ExactSource::same_screen_coordinate):
+// wherever it says two vertices have one screen x (or y), their exact projected
+// values are equal; and on views along an axis, whose rows read one or two world
+// coordinates, it says so for every pair that shares them (vertices on a coarse
+// lattice: many do), in front and side views and in orbit views at azimuths of
+// multiples of 90 degrees, whose rows are not powers of two.
+TEST(ScreenLines, ImagesToldOnOneLineByTheWorldAreSo) {
+  std::mt19937_64 rng(11);
+  std::uniform_int_distribution<int> lattice(0, 3);
+  std::vector<vismap::Vec3> world;
+  for (int i = 0; i < 64; ++i)
+    world.push_back({1.3 * lattice(rng), 0.7 * lattice(rng) + 0.1, 2.9 * lattice(rng) / 3});
+  int told = 0, pairs_sharing = 0;
+  for (const std::array<double, 3>& d : std::vector<std::array<double, 3>>{
+           {0, -1, 0}, {-1, 0, 0}, {-0.866, 0, -0.5}, {0, 0.866, -0.5}, {-1, -2, -3}, {0.3, 0, -1}}) {
+    vismap::Scene scene;
+    scene.vertices = world;
+    vismap::Camera cam;
+    cam.dir = vismap::Vec3{d[0], d[1], d[2]};
+    const vismap::View view = vismap::make_view(cam, scene);
+    vismap::exact::ExactSource source;
+    source.vertices = &world;
+    source.m = view.m;
+    for (std::uint32_t a = 0; a < world.size(); ++a)
+      for (std::uint32_t b = 0; b < world.size(); ++b)
+        for (int r : {0, 1}) {
+          const bool same = source.same_screen_coordinate(a, b, r);
+          const auto& row = view.m[static_cast<std::size_t>(r)];
+          const vismap::Vec3 &p = world[a], &q = world[b];
+          const bool shares = (row[0] == 0 || p.x == q.x) && (row[1] == 0 || p.y == q.y) && (row[2] == 0 || p.z == q.z);
+          if (same) {
+            ++told;
+            EXPECT_EQ(source.row_at(r, a, false), source.row_at(r, b, false)) << a << " " << b << " row " << r;
+          }
+          if (shares && a != b && (row[0] == 0 || row[1] == 0 || row[2] == 0)) {
+            ++pairs_sharing;
+            EXPECT_TRUE(same) << a << " " << b << " row " << r;
+          }
+        }
+  }
+  EXPECT_GT(pairs_sharing, 1000);
+  EXPECT_GT(told, pairs_sharing);
+}
+
+// Order on lazy points without exceptions (exact_kernel.h): between_on_line and
+// compare_xy_exactly answer as CGAL's predicates on the exact points, on a
+// vertical line whose x is no double (1/3), a horizontal one, and a slanted
+// one, each with a point repeated as a second object of the same value; and on
+// the vertical line, whose points' y set them apart, no exact value is needed,
+// where CGAL's own predicate (which decides x first) needs one.
+TEST(PointOrder, AsCGALsOnExactPointsAndWithoutExactValuesOnAVerticalLine) {
+  using vismap::exact::FT;
+  using vismap::exact::P2;
+  const FT third = FT(1) / FT(3), seventh = FT(2) / FT(7);
+  auto vertical = [&](double y) { return P2(FT(1) / FT(3), FT(y)); };
+  auto horizontal = [&](double x) { return P2(FT(x), FT(2) / FT(7)); };
+  auto slanted = [&](double t) { return P2(third + FT(t) / FT(5), seventh - FT(t) / FT(9)); };
+  const std::vector<double> at{-2, 0.5, 3, 0.5, 7.25};   // (0.5 twice: equal points, two objects)
+  for (int line = 0; line < 3; ++line) {
+    std::vector<P2> pts;
+    for (double t : at) pts.push_back(line == 0 ? vertical(t) : line == 1 ? horizontal(t) : slanted(t));
+    for (const P2& a : pts)
+      for (const P2& b : pts) {
+        EXPECT_EQ(vismap::exact::compare_xy_exactly(a, b), CGAL::compare_xy(CGAL::exact(a), CGAL::exact(b)));
+        for (const P2& c : pts)
+          for (bool strictly : {false, true}) {
+            const bool want = strictly ? CGAL::collinear_are_strictly_ordered_along_line(CGAL::exact(a), CGAL::exact(b), CGAL::exact(c))
+                                       : CGAL::collinear_are_ordered_along_line(CGAL::exact(a), CGAL::exact(b), CGAL::exact(c));
+            EXPECT_EQ(vismap::exact::between_on_line(a, b, c, strictly), want) << "line " << line;
+          }
+      }
+  }
+  const P2 p = vertical(1), q = vertical(2), r = vertical(4);
+  const std::int64_t before = vismap::exact::filter_counts.exact;
+  EXPECT_TRUE(vismap::exact::between_on_line(p, q, r, true));
+  EXPECT_FALSE(vismap::exact::between_on_line(q, p, r, true));
+  EXPECT_EQ(vismap::exact::filter_counts.exact, before);
+  EXPECT_TRUE(CGAL::collinear_are_strictly_ordered_along_line(p, q, r));
+  EXPECT_EQ(vismap::exact::filter_counts.exact, before + 1);
+}
+
 // ---- a point's side of a facet's plane, in the world ------------------------------
 
 // world::PlaneSide (one normal in doubles, a static bound, then the exact
@@ -597,7 +678,9 @@ TEST(Culling, FacesSeenFromBehindOutsideTheNearPlanesCapsAreCulled) {
     opt.threads = 1;
     const vismap::VisibilityMap m = vismap::visibility_franklin(t, view, opt);
     EXPECT_GT(m.stats.counted("near_plane_caps"), 0) << shot.what;
-    if (shot.culls) EXPECT_GT(m.stats.counted("culled_back_faces"), 0) << shot.what;
+    if (shot.culls) {
+      EXPECT_GT(m.stats.counted("culled_back_faces"), 0) << shot.what;
+    }
     const std::string json = map_json(t, view, opt);
     vismap::VisibilityMap n = vismap::visibility_newell(t, view, opt);
     n.stats = {};
