@@ -230,7 +230,7 @@ struct Item {
 };
 
 Item item(const P2& a, const P2& b, int curve, Role role) {
-  if (CGAL::compare_xy(a, b) == CGAL::LARGER) return Item{b, a, curve, role};
+  if (compare_xy_exactly(a, b) == CGAL::LARGER) return Item{b, a, curve, role};
   return Item{a, b, curve, role};
 }
 
@@ -338,7 +338,7 @@ class Visibility {
       const P2 &u = f.v[k].xy(), &v = f.v[k1].xy();
       if ((f.id[k] < 0 || f.id[k1] < 0) && !f.on_diagonal(k)) continue;   // (a near-plane cut, or a side cut short)
       if (CGAL::orientation(u, v, p) != CGAL::COLLINEAR) continue;
-      if (CGAL::compare_xy(p, u) == CGAL::compare_xy(p, v)) continue;   // (not between its ends)
+      if (compare_xy_exactly(p, u) == compare_xy_exactly(p, v)) continue;   // (not between its ends)
       const CGAL::Orientation mine = CGAL::orientation(u, v, f.v[(k + 2) % n].xy());
       for (int gi : near) {
         const Facet& g = ss_.facets[static_cast<std::size_t>(gi)];
@@ -364,7 +364,7 @@ class Visibility {
   static void side_crossing(const P2& a, const P2& b, const P2& u, const P2& v, std::vector<P2>& out) {
     const CGAL::Orientation ou = CGAL::orientation(a, b, u), ov = CGAL::orientation(a, b, v);
     auto strictly_between = [&](const P2& p) {
-      return CGAL::compare_xy(a, p) == CGAL::SMALLER && CGAL::compare_xy(p, b) == CGAL::SMALLER;
+      return compare_xy_exactly(a, p) == CGAL::SMALLER && compare_xy_exactly(p, b) == CGAL::SMALLER;
     };
     if (ou == CGAL::COLLINEAR || ov == CGAL::COLLINEAR) {
       if (ou == CGAL::COLLINEAR && strictly_between(u)) out.push_back(u);
@@ -396,7 +396,7 @@ struct Run {
   int curve;
 };
 
-bool less_xy(const P2& a, const P2& b) { return CGAL::compare_xy(a, b) == CGAL::SMALLER; }
+bool less_xy(const P2& a, const P2& b) { return compare_xy_exactly(a, b) == CGAL::SMALLER; }
 
 // One screen line's items (a group, in any order), swept along the line: its
 // stretches between consecutive end points, each with the segments and seams
@@ -450,7 +450,8 @@ class LineSweep {
  private:
   static void sort_points(std::vector<P2>& v) {
     std::sort(v.begin(), v.end(), less_xy);
-    v.erase(std::unique(v.begin(), v.end(), [](const P2& a, const P2& b) { return a == b; }), v.end());
+    auto same = [](const P2& a, const P2& b) { return compare_xy_exactly(a, b) == CGAL::EQUAL; };
+    v.erase(std::unique(v.begin(), v.end(), same), v.end());
   }
   std::size_t at(const P2& p) const {
     return static_cast<std::size_t>(std::lower_bound(ev_.begin(), ev_.end(), p, less_xy) - ev_.begin());
