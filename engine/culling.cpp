@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <numeric>
+#include <optional>
 
 #include "engine/parallel.h"
 #include "engine/self_contact.h"
@@ -43,18 +44,45 @@ void drop_meeting_themselves(const Scene& scene, const WorldFacets& wf, const st
     if (meets[k]) closed[static_cast<std::size_t>(comp[static_cast<std::size_t>(members[k][0])])] = 0;
 }
 
-// Facets joined across the pieces they share (`only_pairs`: only across those
-// that exactly two facets share), on the threads: each facet's component, the
-// lowest facet number in it.
-std::vector<int> joined_facets(int n, const std::vector<WorldPiece>& pieces, bool only_pairs, int threads) {
-  const int np = static_cast<int>(pieces.size());
+// The input vertices (file indices) of facet f's edge k, lower first, where
+// the facet is its whole face (its corners the face's ring's, in order; else
+// none): two facets of one solid meet along an edge between the same two
+// input vertices, where another solid touching it along that edge has its own.
+std::optional<std::pair<std::uint32_t, std::uint32_t>> input_edge(const Scene& scene, const WorldFacet& w,
+                                                                   std::uint32_t k) {
+  if (w.face < 0 || !scene.holes_of(static_cast<std::size_t>(w.face)).empty()) return std::nullopt;
+  const IndexRing& ring = scene.faces[static_cast<std::size_t>(w.face)];
+  if (ring.size() != w.v.size()) return std::nullopt;
+  for (std::size_t i = 0; i < ring.size(); ++i) {   // (canonical ids: the same point)
+    const Vec3 &p = scene.vertices[ring[i]], &q = scene.vertices[w.v[i]];
+    if (p.x != q.x || p.y != q.y || p.z != q.z) return std::nullopt;
+  }
+  const std::uint32_t a = ring[k], b = ring[(k + 1) % ring.size()];
+  return std::pair(std::min(a, b), std::max(a, b));
+}
+
+// Facets joined across the pieces they share, on the threads: each facet's
+// component, the lowest facet number in it. With `shells`, only across the
+// pieces that exactly two facets share, and where more share one, between
+// those whose edges join the same two input vertices (input_edge).
+std::vector<int> joined_facets(const Scene& scene, const WorldFacets& wf, const std::vector<WorldPiece>& pieces,
+                               bool shells, int threads) {
+  const int n = static_cast<int>(wf.facets.size()), np = static_cast<int>(pieces.size());
   // (Joined on the threads: a component's number is then its first facet.)
   ConcurrentUnionFind uf(static_cast<std::size_t>(n));
   parallel_chunks(np, 16384, threads, [&](int, Chunk r) {
     for (int i = r.begin; i < r.end; ++i) {
       const auto& s = pieces[static_cast<std::size_t>(i)].sharers;
-      if (only_pairs && s.size() != 2) continue;
-      for (std::size_t k = 1; k < s.size(); ++k) uf.join(s[0].facet, s[k].facet);
+      if (!shells || s.size() <= 2) {
+        for (std::size_t k = 1; k < s.size(); ++k) uf.join(s[0].facet, s[k].facet);
+        continue;
+      }
+      for (std::size_t a = 0; a < s.size(); ++a) {
+        const auto ea = input_edge(scene, wf.facets[static_cast<std::size_t>(s[a].facet)], s[a].edge);
+        for (std::size_t b = a + 1; ea && b < s.size(); ++b)
+          if (ea == input_edge(scene, wf.facets[static_cast<std::size_t>(s[b].facet)], s[b].edge))
+            uf.join(s[a].facet, s[b].facet);
+      }
     }
   });
   // Each facet's component, once (the loops that follow read it on several threads).
@@ -70,15 +98,16 @@ std::vector<int> joined_facets(int n, const std::vector<WorldPiece>& pieces, boo
 ClosedComponents closed_components(const Scene& scene, const WorldFacets& wf, const std::vector<WorldPiece>& pieces,
                                    int threads) {
   const int n = static_cast<int>(wf.facets.size()), np = static_cast<int>(pieces.size());
-  // Shells: facets joined where exactly two share a piece. Where more share one
-  // (solids touching along an edge or a face: a building's annex against its
-  // wall), each solid is still a shell of its own, closed if its facets close it,
-  // and hides its own faces whatever touches it; the connected components (joined
+  // Shells: facets joined where exactly two share a piece, or where more do,
+  // those whose edges join the same two input vertices (solids touching along
+  // an edge or a face: a building's annex against its wall, a box on another).
+  // Each solid is then a shell of its own, closed if its facets close it, and
+  // hides its own faces whatever touches it. The connected components (joined
   // across every shared piece) are kept apart for the height fields.
   const bool all_pairs = std::none_of(pieces.begin(), pieces.end(), [](const WorldPiece& p) { return p.sharers.size() > 2; });
   ClosedComponents cc;
-  if (!all_pairs) cc.connected = joined_facets(n, pieces, /*only_pairs=*/false, threads);
-  std::vector<int> comp = joined_facets(n, pieces, /*only_pairs=*/!all_pairs, threads);
+  if (!all_pairs) cc.connected = joined_facets(scene, wf, pieces, /*shells=*/false, threads);
+  std::vector<int> comp = joined_facets(scene, wf, pieces, /*shells=*/!all_pairs, threads);
   std::vector<char> closed(n, 1);
   auto open = [&](int f) {
     std::atomic_ref<char>(closed[static_cast<std::size_t>(comp[f])]).store(0, std::memory_order_relaxed);

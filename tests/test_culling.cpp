@@ -230,18 +230,22 @@ TEST(ClosedComponents, SurfacesThatCrossThemselvesAreNotClosed) {
 
 // Closed boxes that touch (tests/data/boxes_touching.off): an annex against the
 // first box's wall, sharing parts of two of its edges (pieces of four sharers),
-// a box meeting it along a whole upright edge, and one standing on its roof.
-// Each box is a closed shell of its own, whatever touches it; the first three
-// are one connected component. A box left open (its roof taken away), or with
-// a face turned the other way, is not closed, and the others still are.
+// a box meeting it along a whole upright edge, one standing on its roof, and
+// one on the third box, its floor that box's roof (every edge of the two faces
+// shared by four facets: the solids are told apart by their input vertices).
+// Each box is a closed shell of its own, whatever touches it; all but the one
+// on the roof are one connected component. A box left open (its roof taken
+// away), or with a face turned the other way, is not closed, and the others
+// still are.
 TEST(ClosedComponents, SolidsThatTouchAreShellsOfTheirOwn) {
   auto boxes = [](int drop_face, int flip_face) {
     Scene s;
     s.file = "boxes";
-    const std::array<std::array<double, 6>, 4> at = {{{0, 0, 0, 2, 1, 1},
+    const std::array<std::array<double, 6>, 5> at = {{{0, 0, 0, 2, 1, 1},
                                                       {2, 0, 0, 3, 0.5, 0.5},
                                                       {-1, 1, 0, 0, 2, 1},
-                                                      {0.5, 0.25, 1, 1.5, 0.75, 1.5}}};
+                                                      {0.5, 0.25, 1, 1.5, 0.75, 1.5},
+                                                      {-1, 1, 1, 0, 2, 2}}};
     for (const auto& [x0, y0, z0, x1, y1, z1] : at) {
       const auto b = static_cast<std::uint32_t>(s.vertices.size());
       s.vertices.insert(s.vertices.end(), {{x0, y0, z0}, {x1, y0, z0}, {x1, y1, z0}, {x0, y1, z0},
@@ -260,7 +264,8 @@ TEST(ClosedComponents, SolidsThatTouchAreShellsOfTheirOwn) {
   auto box_of = [](const Scene& s, const WorldFacets& wf, std::size_t f) {
     return static_cast<int>(s.faces[static_cast<std::size_t>(wf.facets[f].face)][0] / 8);
   };
-  for (const auto& [drop, flip, open_box] : std::vector<std::array<int, 3>>{{-1, -1, -1}, {7, -1, 1}, {-1, 15, 2}}) {
+  for (const auto& [drop, flip, open_box] :
+       std::vector<std::array<int, 3>>{{-1, -1, -1}, {7, -1, 1}, {-1, 15, 2}, {-1, 26, 4}}) {
     const Scene s = boxes(drop, flip);
     const WorldFacets wf = make_world_facets(s);
     for (int threads : {1, 2}) {
