@@ -44,21 +44,23 @@ void drop_meeting_themselves(const Scene& scene, const WorldFacets& wf, const st
     if (meets[k]) closed[static_cast<std::size_t>(comp[static_cast<std::size_t>(members[k][0])])] = 0;
 }
 
-// The input vertices (file indices) of facet f's edge k, lower first, where
-// the facet is its whole face (its corners the face's ring's, in order; else
-// none): two facets of one solid meet along an edge between the same two
-// input vertices, where another solid touching it along that edge has its own.
+// The input vertices (file indices) of facet w's edge k, lower first, where
+// the facet is its whole face (as many corners as the face's ring, the edge's
+// two at the same places; else none): two facets of one solid meet along an
+// edge between the same two input vertices, where another solid touching it
+// along that edge has its own. (Any such joining is safe: each shell is tested
+// closed and embedded on its own.)
 std::optional<std::pair<std::uint32_t, std::uint32_t>> input_edge(const Scene& scene, const WorldFacet& w,
                                                                    std::uint32_t k) {
   if (w.face < 0 || !scene.holes_of(static_cast<std::size_t>(w.face)).empty()) return std::nullopt;
   const IndexRing& ring = scene.faces[static_cast<std::size_t>(w.face)];
-  if (ring.size() != w.v.size()) return std::nullopt;
-  for (std::size_t i = 0; i < ring.size(); ++i) {   // (canonical ids: the same point)
-    const Vec3 &p = scene.vertices[ring[i]], &q = scene.vertices[w.v[i]];
-    if (p.x != q.x || p.y != q.y || p.z != q.z) return std::nullopt;
-  }
-  const std::uint32_t a = ring[k], b = ring[(k + 1) % ring.size()];
-  return std::pair(std::min(a, b), std::max(a, b));
+  const std::size_t n = ring.size(), j = (k + 1) % n;
+  auto same = [&](std::uint32_t a, std::uint32_t b) {   // (canonical ids: the same point)
+    const Vec3 &p = scene.vertices[a], &q = scene.vertices[b];
+    return p.x == q.x && p.y == q.y && p.z == q.z;
+  };
+  if (n != w.v.size() || !same(ring[k], w.v[k]) || !same(ring[j], w.v[j])) return std::nullopt;
+  return std::pair(std::min(ring[k], ring[j]), std::max(ring[k], ring[j]));
 }
 
 // Facets joined across the pieces they share, on the threads: each facet's
