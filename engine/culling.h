@@ -24,8 +24,9 @@ namespace vismap::engine {
 
 struct ClosedComponents {
   // Per facet: its shell (a facet index): facets joined across the pieces that
-  // exactly two facets share. Solids that touch along an edge or a face are
-  // shells apart, each closed or not on its own.
+  // exactly two facets share, and across those more share between facets whose
+  // edges join the same two input vertices. Solids that touch along an edge or
+  // a face are shells apart, each closed or not on its own.
   std::vector<int> component;
   // Per facet: its connected component (a facet index), facets joined across
   // every piece they share, where some piece has more than two sharers; else
