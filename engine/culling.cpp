@@ -106,7 +106,8 @@ ClosedComponents closed_components(const Scene& scene, const WorldFacets& wf, co
   // Each solid is then a shell of its own, closed if its facets close it, and
   // hides its own faces whatever touches it. The connected components (joined
   // across every shared piece) are kept apart for the height fields.
-  const bool all_pairs = std::none_of(pieces.begin(), pieces.end(), [](const WorldPiece& p) { return p.sharers.size() > 2; });
+  auto pair = [](const WorldPiece& p) { return p.sharers.size() <= 2; };
+  const bool all_pairs = std::all_of(pieces.begin(), pieces.end(), pair);
   ClosedComponents cc;
   if (!all_pairs) cc.connected = joined_facets(scene, wf, pieces, /*shells=*/false, threads);
   std::vector<int> comp = joined_facets(scene, wf, pieces, /*shells=*/!all_pairs, threads);

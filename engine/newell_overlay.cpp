@@ -213,8 +213,9 @@ struct Cutter {
     auto less = [](const P2& a, const P2& b) { return compare_xy_exactly(a, b) == CGAL::SMALLER; };
     const P2 clo = std::min(c0, c1, less), chi = std::max(c0, c1, less);
     const P2 dlo = std::min(d0, d1, less), dhi = std::max(d0, d1, less);
-    const P2 lo = std::max(clo, dlo, less), hi = std::min(chi, dhi, less);   // lexicographic order is the order along the line
-    if (!less(lo, hi)) return;                                                // they meet in a point at most
+    // (Lexicographic order is the order along the line.)
+    const P2 lo = std::max(clo, dlo, less), hi = std::min(chi, dhi, less);
+    if (!less(lo, hi)) return;   // they meet in a point at most
     overlaps.emplace_back(ci, di);
     if (inside(C, d0)) cut(ci, d0, &D.s->x);
     if (inside(C, d1)) cut(ci, d1, &D.t->x);

@@ -508,8 +508,9 @@ TEST(PointOrder, AsCGALsOnExactPointsAndWithoutExactValuesOnAVerticalLine) {
         EXPECT_EQ(vismap::exact::compare_xy_exactly(a, b), CGAL::compare_xy(CGAL::exact(a), CGAL::exact(b)));
         for (const P2& c : pts)
           for (bool strictly : {false, true}) {
-            const bool want = strictly ? CGAL::collinear_are_strictly_ordered_along_line(CGAL::exact(a), CGAL::exact(b), CGAL::exact(c))
-                                       : CGAL::collinear_are_ordered_along_line(CGAL::exact(a), CGAL::exact(b), CGAL::exact(c));
+            const auto &ea = CGAL::exact(a), &eb = CGAL::exact(b), &ec = CGAL::exact(c);
+            const bool want = strictly ? CGAL::collinear_are_strictly_ordered_along_line(ea, eb, ec)
+                                       : CGAL::collinear_are_ordered_along_line(ea, eb, ec);
             EXPECT_EQ(vismap::exact::between_on_line(a, b, c, strictly), want) << "line " << line;
           }
       }
