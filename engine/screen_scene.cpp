@@ -435,16 +435,36 @@ struct CurveMaker {
   const ExactSource* exact = nullptr;   // (the screen scene's)
   std::vector<std::vector<P3>> clip_edges;   // per facet: its cut by the near plane (perspective only)
   bool cut(int facet) const { return !clip_edges.empty() && !clip_edges[static_cast<std::size_t>(facet)].empty(); }
-  // Per facet, what make() asks of it, side by side (a facet is 144 bytes: its
-  // sharers' facets were most of make()'s cache misses): its facing, whether it
-  // has corners (not culled before projection or by the near plane), and
-  // whether it hides and labels (as culling left it).
+  // Per facet, what make() and judge() ask of it, side by side in 8 bytes (a
+  // facet is 144 bytes, a world facet 48: its sharers' facets were most of their
+  // cache misses): its facing, whether it has corners (not culled before
+  // projection or by the near plane), whether it hides and labels (as culling
+  // left it), its face, and which of its edges are its face's boundary.
   struct Look {
     Facing facing = Facing::EdgeOn;
     bool projected = false;
     bool occluder = false;
+    // Bit k: edge k is EdgeRole::Boundary (k < 7); bit 7: the facet has more
+    // than 7 edges (its WorldFacet tells).
+    std::uint8_t boundary = 0;
+    int face = -1;
   };
   std::vector<Look> look;
+  static Look look_of(const Facet& f, const WorldFacet& w) {
+    Look l{f.facing, !f.v.empty(), f.occluder, 0, w.face};
+    if (w.role.size() > 7) l.boundary = 0x80;
+    else
+      for (std::size_t k = 0; k < w.role.size(); ++k)
+        if (w.role[k] == EdgeRole::Boundary) l.boundary |= static_cast<std::uint8_t>(1u << k);
+    return l;
+  }
+  // Whether the sharer's edge is its face's boundary (not a diagonal inside it).
+  bool on_boundary(const Sharer& s) const {
+    const Look& l = look[static_cast<std::size_t>(s.facet)];
+    if (l.boundary & 0x80) return wf.facets[static_cast<std::size_t>(s.facet)].role[s.edge] == EdgeRole::Boundary;
+    return (l.boundary >> s.edge) & 1u;
+  }
+  int face_of(int facet) const { return look[static_cast<std::size_t>(facet)].face; }
   Facing facing(int facet) const {   // (a facet without corners: edge-on)
     const Look& l = look[static_cast<std::size_t>(facet)];
     return l.projected ? l.facing : Facing::EdgeOn;
@@ -551,10 +571,10 @@ void CurveMaker::faces_of(const WorldPiece& wp, SmallInts& faces, std::array<int
   facet = {-1, -1};
   if (wp.sharers.size() <= 2) {   // (most pieces: no sort)
     for (const Sharer& s : wp.sharers) {
-      const WorldFacet& w = wf.facets[static_cast<std::size_t>(s.facet)];
-      if (w.role[s.edge] != EdgeRole::Boundary) continue;
-      if (faces.empty()) { faces.push_back(w.face); facet[0] = s.facet; }
-      else if (w.face != faces[0]) { faces.push_back(w.face); facet[1] = s.facet; }
+      if (!on_boundary(s)) continue;
+      const int face = face_of(s.facet);
+      if (faces.empty()) { faces.push_back(face); facet[0] = s.facet; }
+      else if (face != faces[0]) { faces.push_back(face); facet[1] = s.facet; }
     }
     if (faces.size() == 2 && faces[1] < faces[0]) {
       std::swap(faces[0], faces[1]);
@@ -618,8 +638,8 @@ bool CurveMaker::make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3
   c.drawn = drawn_of(c.faces, c.kind);
   c.covered = covered(wp);
   // Its place in the (depth, face index) order: the lowest face it belongs to.
-  c.order_face = wf.facets[static_cast<std::size_t>(c.sharers[0])].face;
-  for (int s : c.sharers) c.order_face = std::min(c.order_face, wf.facets[static_cast<std::size_t>(s)].face);
+  c.order_face = face_of(c.sharers[0]);
+  for (int s : c.sharers) c.order_face = std::min(c.order_face, face_of(s));
   if (!c.faces.empty()) c.order_face = c.faces[0];
   // Clip at the near plane, project.
   std::uint32_t a = wp.a, b = wp.b;
@@ -1184,10 +1204,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   }
 
   M.look.resize(ss.facets.size());
-  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) {
-    const Facet& f = ss.facets[fi];
-    M.look[fi] = CurveMaker::Look{f.facing, !f.v.empty(), f.occluder};
-  }
+  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) M.look[fi] = CurveMaker::look_of(ss.facets[fi], wf.facets[fi]);
 
   // Chunks of pieces in parallel, appended in piece order a wave of chunks at a
   // time (parallel_append): the curves are never held twice (curves made in
