@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <tuple>
@@ -547,13 +546,7 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
   // in whatever order the threads come, then sorted by their ranks (distinct).
   const std::size_t nfacets = wf.facets.size();
   std::vector<std::uint32_t> next(nfacets + 1, 0);
-  // (On one thread the chunks run one after another: a plain increment, not a
-  // locked one, for each of millions of pieces.)
-  auto take = [&](int facet) -> std::uint32_t {
-    std::uint32_t& n = next[static_cast<std::size_t>(facet)];
-    if (threads <= 1) return n++;
-    return std::atomic_ref<std::uint32_t>(n).fetch_add(1, std::memory_order_relaxed);
-  };
+  auto take = [&](int facet) { return shared_fetch_add(next[static_cast<std::size_t>(facet)], 1u, threads); };
   parallel_for(static_cast<int>(nchunks), threads, [&](int c) {
     const auto [from, to] = chunk_of(static_cast<std::size_t>(c));
     for (std::size_t g = from; g < to; ++g)

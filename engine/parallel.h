@@ -14,11 +14,13 @@
 // and evaluate their exact values once (std::call_once).
 #pragma once
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
 #include <iterator>
 #include <mutex>
+#include <utility>
 #include <vector>
 
 #include <CGAL/FPU.h>
@@ -181,6 +183,26 @@ struct Chunk {
 };
 inline int chunk_count(int n, int size) { return (n + size - 1) / size; }
 inline Chunk chunk(int k, int n, int size) { return {k * size, std::min(n, (k + 1) * size)}; }
+
+// A counter or slot that the iterations of one parallel loop on `threads`
+// threads share: a locked operation where more than one thread runs them, a
+// plain one where one does (the iterations then run one after another): no
+// locked instruction per item on one thread. Relaxed: the loop's end orders them.
+template <class T>
+T shared_fetch_add(T& x, T d, int threads) {
+  if (threads <= 1) return std::exchange(x, x + d);
+  return std::atomic_ref<T>(x).fetch_add(d, std::memory_order_relaxed);
+}
+template <class T>
+bool shared_compare_exchange(T& x, T& expected, T desired, int threads) {
+  if (threads > 1) return std::atomic_ref<T>(x).compare_exchange_strong(expected, desired, std::memory_order_relaxed);
+  if (x != expected) {
+    expected = x;
+    return false;
+  }
+  x = desired;
+  return true;
+}
 
 // body(k, chunk k) for the chunks of `size` consecutive items of [0, n), on
 // `threads` threads (parallel_for); chunk k's results go to the caller's slot k.

@@ -444,24 +444,29 @@ struct CurveMaker {
     Facing facing = Facing::EdgeOn;
     bool projected = false;
     bool occluder = false;
-    // Bit k: edge k is EdgeRole::Boundary (k < 7); bit 7: the facet has more
-    // than 7 edges (its WorldFacet tells).
+    // Bit k: edge k is EdgeRole::Boundary (k < kEdgeBits); kMany: the facet
+    // has more edges (its WorldFacet tells).
     std::uint8_t boundary = 0;
     int face = -1;
+    static constexpr std::size_t kEdgeBits = 7;
+    static constexpr std::uint8_t kMany = 1u << kEdgeBits;
   };
   std::vector<Look> look;
   static Look look_of(const Facet& f, const WorldFacet& w) {
     Look l{f.facing, !f.v.empty(), f.occluder, 0, w.face};
-    if (w.role.size() > 7) l.boundary = 0x80;
-    else
-      for (std::size_t k = 0; k < w.role.size(); ++k)
-        if (w.role[k] == EdgeRole::Boundary) l.boundary |= static_cast<std::uint8_t>(1u << k);
+    if (w.role.size() > Look::kEdgeBits) {
+      l.boundary = Look::kMany;
+      return l;
+    }
+    for (std::size_t k = 0; k < w.role.size(); ++k)
+      if (w.role[k] == EdgeRole::Boundary) l.boundary |= static_cast<std::uint8_t>(1u << k);
     return l;
   }
   // Whether the sharer's edge is its face's boundary (not a diagonal inside it).
   bool on_boundary(const Sharer& s) const {
     const Look& l = look[static_cast<std::size_t>(s.facet)];
-    if (l.boundary & 0x80) return wf.facets[static_cast<std::size_t>(s.facet)].role[s.edge] == EdgeRole::Boundary;
+    if (l.boundary & Look::kMany)
+      return wf.facets[static_cast<std::size_t>(s.facet)].role[s.edge] == EdgeRole::Boundary;
     return (l.boundary >> s.edge) & 1u;
   }
   int face_of(int facet) const { return look[static_cast<std::size_t>(facet)].face; }
@@ -583,14 +588,14 @@ void CurveMaker::faces_of(const WorldPiece& wp, SmallInts& faces, std::array<int
     return;
   }
   for (const Sharer& s : wp.sharers)
-    if (wf.facets[s.facet].role[s.edge] == EdgeRole::Boundary) faces.push_back(wf.facets[s.facet].face);
+    if (on_boundary(s)) faces.push_back(face_of(s.facet));
   std::sort(faces.begin(), faces.end());
   faces.truncate(static_cast<std::size_t>(std::unique(faces.begin(), faces.end()) - faces.begin()));
   if (faces.size() != 2) return;
   for (const Sharer& s : wp.sharers) {
-    if (wf.facets[s.facet].role[s.edge] != EdgeRole::Boundary) continue;
+    if (!on_boundary(s)) continue;
     for (std::size_t k = 0; k < 2; ++k)
-      if (wf.facets[s.facet].face == faces[k] && facet[k] < 0) facet[k] = s.facet;
+      if (face_of(s.facet) == faces[k] && facet[k] < 0) facet[k] = s.facet;
   }
 }
 

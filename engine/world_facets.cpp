@@ -5,7 +5,6 @@
 #include <gmpxx.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cstring>
 #include <exception>
 
@@ -117,25 +116,14 @@ std::vector<std::uint32_t> canonical_vertex_ids(const Scene& scene, int threads)
     const Vec3& q = scene.vertices[j];
     return p.x == q.x && p.y == q.y && p.z == q.z;
   };
-  // (A compare-and-swap; on one thread a plain one: no locked instruction per vertex.)
-  auto exchange = [&](std::uint32_t& slot, std::uint32_t& expected, std::uint32_t desired) {
-    if (threads > 1)
-      return std::atomic_ref<std::uint32_t>(slot).compare_exchange_strong(expected, desired, std::memory_order_relaxed);
-    if (slot != expected) {
-      expected = slot;
-      return false;
-    }
-    slot = desired;
-    return true;
-  };
   parallel_chunks(static_cast<int>(n), 16384, threads, [&](int, Chunk r) {
     for (auto i = static_cast<std::uint32_t>(r.begin); i < static_cast<std::uint32_t>(r.end); ++i) {
       const Vec3& p = scene.vertices[i];
       for (std::size_t k = hash(p) & (cap - 1);; k = (k + 1) & (cap - 1)) {
         std::uint32_t held = empty;
-        if (exchange(table[k], held, i)) break;   // (taken by i)
+        if (shared_compare_exchange(table[k], held, i, threads)) break;   // (taken by i)
         if (!same(p, held)) continue;
-        while (i < held && !exchange(table[k], held, i)) {}
+        while (i < held && !shared_compare_exchange(table[k], held, i, threads)) {}
         break;
       }
     }
