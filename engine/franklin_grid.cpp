@@ -1854,7 +1854,7 @@ void classify_curve(const Grid& g, const ScreenScene& ss, int ci, std::vector<P2
   const bool increasing = (use_x ? CGAL::compare(cv.s->x, cv.t->x) : CGAL::compare(cv.s->y, cv.t->y)) == CGAL::SMALLER;
   auto key_less = [&](const P2& a, const P2& b) {   // predicates: no coordinates built
     if (same_rep(a, b)) return false;   // (a point cut twice is often one number)
-    return (use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b)) == (increasing ? CGAL::SMALLER : CGAL::LARGER);
+    return compare_coordinate_exactly(a, b, use_x) == (increasing ? CGAL::SMALLER : CGAL::LARGER);
   };
   // The cut points are shared with the curves cut at them, classified on other
   // threads, and a lazy point's interval narrows once its exact value is known:
@@ -1865,7 +1865,7 @@ void classify_curve(const Grid& g, const ScreenScene& ss, int ci, std::vector<P2
   std::sort(pts.begin(), pts.end(), key_less);
   // Points of one curve are equal when their dominant coordinates are.
   auto same_key = [&](const P2& a, const P2& b) {
-    return same_rep(a, b) || (use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b)) == CGAL::EQUAL;
+    return same_rep(a, b) || compare_coordinate_exactly(a, b, use_x) == CGAL::EQUAL;
   };
   pts.erase(std::unique(pts.begin(), pts.end(), same_key), pts.end());
   exact::filter_counts = before_sort;

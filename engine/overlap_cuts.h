@@ -54,9 +54,7 @@ void share_overlap_cuts(const std::vector<Curve>& curves, std::vector<std::pair<
     // walls seen edge-on, all on one screen line: minutes on a CAD part).
     const Curve& C0 = curves[members[k].second];
     const bool use_x = CGAL::compare_x(C0.s->xy(), C0.t->xy()) != CGAL::EQUAL;
-    auto less = [&](const P2& a, const P2& b) {
-      return (use_x ? CGAL::compare_x(a, b) : CGAL::compare_y(a, b)) == CGAL::SMALLER;
-    };
+    auto less = [&](const P2& a, const P2& b) { return compare_coordinate_exactly(a, b, use_x) == CGAL::SMALLER; };
     std::sort(points.begin(), points.end(), less);
     points.erase(std::unique(points.begin(), points.end(), [&](const P2& a, const P2& b) { return !less(a, b); }),
                  points.end());

@@ -486,8 +486,8 @@ TEST(ScreenLines, ImagesToldOnOneLineByTheWorldAreSo) {
   EXPECT_GT(told, pairs_sharing);
 }
 
-// Order on lazy points without exceptions (exact_kernel.h): between_on_line and
-// compare_xy_exactly answer as CGAL's predicates on the exact points, on a
+// Order on lazy points without exceptions (exact_kernel.h): between_on_line,
+// compare_xy_exactly and compare_coordinate_exactly answer as CGAL's predicates on the exact points, on a
 // vertical line whose x is no double (1/3), a horizontal one, and a slanted
 // one, each with a point repeated as a second object of the same value; and on
 // the vertical line, whose points' y set them apart, no exact value is needed,
@@ -506,6 +506,8 @@ TEST(PointOrder, AsCGALsOnExactPointsAndWithoutExactValuesOnAVerticalLine) {
     for (const P2& a : pts)
       for (const P2& b : pts) {
         EXPECT_EQ(vismap::exact::compare_xy_exactly(a, b), CGAL::compare_xy(CGAL::exact(a), CGAL::exact(b)));
+        EXPECT_EQ(vismap::exact::compare_coordinate_exactly(a, b, true), CGAL::compare_x(CGAL::exact(a), CGAL::exact(b)));
+        EXPECT_EQ(vismap::exact::compare_coordinate_exactly(a, b, false), CGAL::compare_y(CGAL::exact(a), CGAL::exact(b)));
         for (const P2& c : pts)
           for (bool strictly : {false, true}) {
             const auto &ea = CGAL::exact(a), &eb = CGAL::exact(b), &ec = CGAL::exact(c);
