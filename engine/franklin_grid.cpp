@@ -1800,7 +1800,7 @@ bool cover_at(const Facet& f, Probe& probe, Cover& out, int own) {
     int o = held ? 0 : orientation(p, q, probe) * turn(f);
     if (o > 0) continue;
     if (o < 0) return false;
-    if (!held && edge_across(p, q, probe) != CGAL::ZERO) {
+    if (!held && edge_across(p, q, f.id[k], f.id[(k + 1) % n], probe) != CGAL::ZERO) {
       across = true;
       continue;
     }

@@ -145,6 +145,25 @@ struct ExactSource {
     return (row[0] == 0 || p.x == q.x) && (row[1] == 0 || p.y == q.y) && (row[2] == 0 || p.z == q.z);
   }
 
+  // In an orthographic view, the sign of the screen cross product of the images
+  // of b - a and d - c (input vertices): (r.v)(u.w) - (u.v)(r.w) = (r x u).(v x w)
+  // (Binet-Cauchy), r and u the rows giving x and y, v = b - a, w = d - c; the
+  // screen scale 2^k, on both coordinates, leaves the sign. In binary floats (no
+  // gcd, no image's exact value made); parallel in the world (edges of aligned
+  // parts, mostly) is a zero found on v x w alone.
+  int screen_cross_sign(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) const {
+    using M = CGAL::Mpzf;
+    const Vec3 &A = (*vertices)[a], &B = (*vertices)[b], &C = (*vertices)[c], &D = (*vertices)[d];
+    const M vx = M(B.x) - M(A.x), vy = M(B.y) - M(A.y), vz = M(B.z) - M(A.z);
+    const M wx = M(D.x) - M(C.x), wy = M(D.y) - M(C.y), wz = M(D.z) - M(C.z);
+    const M cx = vy * wz - vz * wy, cy = vz * wx - vx * wz, cz = vx * wy - vy * wx;
+    if (cx.sign() == 0 && cy.sign() == 0 && cz.sign() == 0) return 0;
+    const auto &r = m[0], &u = m[1];
+    const M nx = M(r[1]) * M(u[2]) - M(r[2]) * M(u[1]), ny = M(r[2]) * M(u[0]) - M(r[0]) * M(u[2]),
+            nz = M(r[0]) * M(u[1]) - M(r[1]) * M(u[0]);
+    return (nx * cx + ny * cy + nz * cz).sign();
+  }
+
   // Facet f's depth plane z = a x + b y + c on the (scaled) screen: the image of
   // its world plane. The three corners' homogeneous images H_i = M (p_i, 1) are
   // exact binary floats; the plane through them is pi with pi_c = (-1)^c times

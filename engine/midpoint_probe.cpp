@@ -1,6 +1,7 @@
 #include "engine/midpoint_probe.h"
 
 #include "engine/franklin_grid.h"
+#include "engine/lazy_leaves.h"
 
 namespace vismap::engine {
 VISMAP_KERNEL_BEGIN
@@ -66,6 +67,7 @@ Probe probe_of(const ScreenScene& ss, const Curve& cv) {
   probe.t = cv.t;
   probe.world = ss.world;
   probe.facets = &ss.facets;
+  probe.orthographic = ss.exact && !ss.exact->perspective ? ss.exact.get() : nullptr;
   {
     CGAL::Protect_FPU_rounding<true> upward;
     probe.idx = approx_of(cv.t->x) - approx_of(cv.s->x);
@@ -98,10 +100,16 @@ CGAL::Sign edge_along(const P3& p, const P3& q, Probe& m) {
       });
 }
 
-CGAL::Sign edge_across(const P3& p, const P3& q, Probe& m) {
+CGAL::Sign edge_across(const P3& p, const P3& q, VertexId ip, VertexId iq, Probe& m) {
   return filtered_sign(
       [&] { return (approx_of(q.x) - approx_of(p.x)) * m.idy - (approx_of(q.y) - approx_of(p.y)) * m.idx; },
       [&]() -> mpq_class {
+        // Input vertices seen orthographically: the world decides, without the
+        // images' rationals (aligned parts' parallel edges: most that come here).
+        const VertexId is = m.curve->vs, it = m.curve->vt;
+        if (m.orthographic && ip >= 0 && iq >= 0 && is >= 0 && it >= 0)
+          return m.orthographic->screen_cross_sign(static_cast<std::uint32_t>(ip), static_cast<std::uint32_t>(iq),
+                                                   static_cast<std::uint32_t>(is), static_cast<std::uint32_t>(it));
         m.need_direction();
         return (to_mpq(q.x) - to_mpq(p.x)) * m.edy - (to_mpq(q.y) - to_mpq(p.y)) * m.edx;
       });

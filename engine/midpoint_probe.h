@@ -20,6 +20,7 @@ struct Probe {
   const P3 *s, *t;
   const std::vector<Vec3>* world;   // the input's vertices (the curve's end point ids index them)
   const std::vector<Facet>* facets; // the screen scene's (the curve's sharers index them)
+  const ExactSource* orthographic = nullptr;   // the scene's, in an orthographic view (else null)
   Interval idx, idy;
   bool x_moves = true;        // t.x != s.x (else the curve is vertical)
   mpq_class ex, ey, edx, edy; // exact values, filled on first need
@@ -64,7 +65,8 @@ CGAL::Sign orientation(const P3& p, const P3& q, Probe& m);
 // sign((q - p) . (t - s)): a facet edge's direction against the curve's.
 CGAL::Sign edge_along(const P3& p, const P3& q, Probe& m);
 // sign((q - p) x (t - s)): zero where a facet edge runs parallel to the curve.
-CGAL::Sign edge_across(const P3& p, const P3& q, Probe& m);
+// ip, iq: p's and q's canonical vertex ids, or -1 (a near-plane cut's point).
+CGAL::Sign edge_across(const P3& p, const P3& q, VertexId ip, VertexId iq, Probe& m);
 // sign(depth of f - depth of g) at m.
 CGAL::Sign depth_order(const Facet& f, const Facet& g, Probe& m);
 // sign(slope of f - slope of g), the slope being the rate at which depth grows

@@ -486,6 +486,47 @@ TEST(ScreenLines, ImagesToldOnOneLineByTheWorldAreSo) {
   EXPECT_GT(told, pairs_sharing);
 }
 
+// The screen cross product's sign from the world (ExactSource::screen_cross_sign,
+// orthographic views): the same as on the images' exact projected values, for
+// pairs of segments between vertices of a coarse lattice (parallel ones by the
+// hundred: the zeros it finds in the world) and of random doubles, in views
+// along an axis, at 30 degrees above an axis and obliquely.
+TEST(ScreenLines, CrossProductSignsFromTheWorldAreTheImages) {
+  std::mt19937_64 rng(12);
+  std::uniform_int_distribution<int> lattice(0, 2);
+  std::uniform_real_distribution<double> any(-3, 3);
+  std::vector<vismap::Vec3> world;
+  for (int i = 0; i < 24; ++i) world.push_back({1.3 * lattice(rng), 0.7 * lattice(rng) + 0.1, 2.9 * lattice(rng) / 3});
+  for (int i = 0; i < 8; ++i) world.push_back({any(rng), any(rng), any(rng)});
+  const auto n = static_cast<std::uint32_t>(world.size());
+  int zeros = 0, signs = 0;
+  for (const std::array<double, 3>& d : std::vector<std::array<double, 3>>{
+           {0, -1, 0}, {-0.866, 0, -0.5}, {-1, -2, -3}, {0.3, 0.1, -1}}) {
+    vismap::Scene scene;
+    scene.vertices = world;
+    vismap::Camera cam;
+    cam.dir = vismap::Vec3{d[0], d[1], d[2]};
+    const vismap::View view = vismap::make_view(cam, scene);
+    vismap::exact::ExactSource source;
+    source.vertices = &world;
+    source.m = view.m;
+    source.k = 3;
+    auto image = [&](std::uint32_t v, int r) { return mpq_class(source.row_at(r, v, true)); };
+    for (std::uint32_t a = 0; a < n; a += 3)
+      for (std::uint32_t b = 1; b < n; b += 2)
+        for (std::uint32_t c = 0; c < n; c += 2)
+          for (std::uint32_t e = 1; e < n; e += 3) {
+            const mpq_class cross = (image(b, 0) - image(a, 0)) * (image(e, 1) - image(c, 1)) -
+                                    (image(b, 1) - image(a, 1)) * (image(e, 0) - image(c, 0));
+            const int want = sgn(cross), got = source.screen_cross_sign(a, b, c, e);
+            ASSERT_EQ(got, want) << a << " " << b << " " << c << " " << e << " dir " << d[0] << "," << d[1] << "," << d[2];
+            (want == 0 ? zeros : signs) += 1;
+          }
+  }
+  EXPECT_GT(zeros, 500);
+  EXPECT_GT(signs, 5000);
+}
+
 // Order on lazy points without exceptions (exact_kernel.h): between_on_line,
 // compare_xy_exactly and compare_coordinate_exactly answer as CGAL's predicates on the exact points, on a
 // vertical line whose x is no double (1/3), a horizontal one, and a slanted
