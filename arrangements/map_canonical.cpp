@@ -14,7 +14,37 @@ namespace {
 
 using namespace exact;
 
-FT depth_at(const MapPiece& m, const P2& p) { return depth_along(*m.s, *m.t, p); }
+// sign(depth of m - depth of w) at the midpoint of a and b, the end points of
+// both (coincident pieces of one map edge): their lines hold that point, so
+// each depth is its line's at the point's x (or y, where x does not move along
+// it), as depth_along gives it. On intervals, else exactly; no lazy number is
+// built (coincident lines, on scenes of aligned parts: hundreds of thousands).
+CGAL::Sign depth_order_at_middle(const MapPiece& m, const MapPiece& w, const P2& a, const P2& b) {
+  return filtered_sign(
+      [&] {
+        const Interval mx = (approx_x(a) + approx_x(b)) / 2, my = (approx_y(a) + approx_y(b)) / 2;
+        auto depth = [&](const MapPiece& p) {
+          const Interval dx = approx_of(p.t->x) - approx_of(p.s->x), dy = approx_of(p.t->y) - approx_of(p.s->y);
+          // (Along x where its difference is apart from 0 and the larger; a
+          // difference reaching 0 on both gives an unbounded interval: exact.)
+          const bool use_x = !dx.do_overlap(0) && (dy.do_overlap(0) || CGAL::abs(dx).inf() >= CGAL::abs(dy).inf());
+          const Interval lambda =
+              use_x ? (mx - approx_of(p.s->x)) / dx : (my - approx_of(p.s->y)) / dy;
+          return approx_of(p.s->z) + lambda * (approx_of(p.t->z) - approx_of(p.s->z));
+        };
+        return depth(m) - depth(w);
+      },
+      [&]() -> mpq_class {
+        const mpq_class mx = (exact_x(a) + exact_x(b)) / 2, my = (exact_y(a) + exact_y(b)) / 2;
+        auto depth = [&](const MapPiece& p) {
+          const mpq_class sx = to_mpq(p.s->x), sy = to_mpq(p.s->y), sz = to_mpq(p.s->z);
+          const mpq_class dx = to_mpq(p.t->x) - sx;
+          const mpq_class lambda = dx != 0 ? mpq_class((mx - sx) / dx) : mpq_class((my - sy) / (to_mpq(p.t->y) - sy));
+          return mpq_class(sz + lambda * (to_mpq(p.t->z) - sz));
+        };
+        return depth(m) - depth(w);
+      });
+}
 
 // Canonical start: the rotation that is lexicographically smallest (vertex
 // numbers follow the points' lexicographic order).
@@ -245,8 +275,6 @@ EdgeAttr edge_attr(const std::vector<MapPiece>& pieces, const int* on_edge, std:
   at.right = any.right;
   at.line = any.line;
   int winner = -1;
-  P2 mid;
-  bool have_mid = false;
   for (std::size_t k = 0; k < count; ++k) {
     const int pi = on_edge[k];
     const MapPiece& m = pieces[pi];
@@ -254,14 +282,13 @@ EdgeAttr edge_attr(const std::vector<MapPiece>& pieces, const int* on_edge, std:
     // farther border under it, and then nothing is drawn there.
     if (!m.visible) continue;
     if (winner < 0) { winner = pi; continue; }
-    if (!have_mid) { mid = CGAL::midpoint(a, b); have_mid = true; }
     const MapPiece& w = pieces[winner];
-    auto c = CGAL::compare(depth_at(m, mid), depth_at(w, mid));
+    const CGAL::Sign c = depth_order_at_middle(m, w, a, b);
     // Ties in (depth, lowest face index), e.g. two intersection lines of one face
     // along one 3D line: the faces lists, lexicographically, so that the written
     // segment does not depend on the order the pieces came in.
-    if (c == CGAL::SMALLER ||
-        (c == CGAL::EQUAL && (m.order_face < w.order_face ||
+    if (c == CGAL::NEGATIVE ||
+        (c == CGAL::ZERO && (m.order_face < w.order_face ||
                               (m.order_face == w.order_face && *m.faces < *w.faces))))
       winner = pi;
   }
