@@ -139,12 +139,13 @@ inline CGAL::Comparison_result compare_xy_exactly(const P2& a, const P2& b) {
   ++filter_counts.exact;
   return CGAL::compare_xy(CGAL::exact(a), CGAL::exact(b));
 }
-// a and b by one coordinate (x where along_x, else y): on the intervals (bounds
-// compared: no rounding-mode switch, which CGAL's filtered compare_x and
-// compare_y make at every call, ~40 ns), else on the exact values. For sorts of
-// many points along a curve.
+// a and b by one coordinate (x where along_x, else y): copies of one point
+// equal, then on the intervals (bounds compared: no rounding-mode switch, which
+// CGAL's filtered compare_x and compare_y make at every call, ~40 ns), else on
+// the exact values. For sorts of many points along a curve.
 inline CGAL::Comparison_result compare_coordinate_exactly(const P2& a, const P2& b, bool along_x) {
   ++filter_counts.calls;
+  if (same_rep(a, b)) return CGAL::EQUAL;   // (a point cut on several curves: one object)
   const Interval u = along_x ? approx_x(a) : approx_y(a), v = along_x ? approx_x(b) : approx_y(b);
   if (u.sup() < v.inf()) return CGAL::SMALLER;
   if (v.sup() < u.inf()) return CGAL::LARGER;

@@ -154,6 +154,13 @@ struct ExactSource {
   int screen_cross_sign(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) const {
     using M = CGAL::Mpzf;
     const Vec3 &A = (*vertices)[a], &B = (*vertices)[b], &C = (*vertices)[c], &D = (*vertices)[d];
+    // Both along one world axis (a difference of doubles is 0 exactly where
+    // they are equal): parallel, with no arithmetic.
+    auto axis = [](const Vec3& p, const Vec3& q) {
+      const bool x = p.x != q.x, y = p.y != q.y, z = p.z != q.z;
+      return x + y + z != 1 ? -1 : x ? 0 : y ? 1 : 2;
+    };
+    if (const int k = axis(A, B); k >= 0 && k == axis(C, D)) return 0;
     const M vx = M(B.x) - M(A.x), vy = M(B.y) - M(A.y), vz = M(B.z) - M(A.z);
     const M wx = M(D.x) - M(C.x), wy = M(D.y) - M(C.y), wz = M(D.z) - M(C.z);
     const M cx = vy * wz - vz * wy, cy = vz * wx - vx * wz, cz = vx * wy - vy * wx;
