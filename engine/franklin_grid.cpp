@@ -1489,8 +1489,9 @@ struct Cutter {
 
   // CGAL::orientation(p, q, r) of points that may be vertex images (ids, or
   // -1): on the intervals, then three images on one screen line x = c or y = c
-  // (ExactSource::same_screen_coordinate), then exactly, fraction-free. Counted
-  // as CGAL's.
+  // (ExactSource::same_screen_coordinate), then, for three images in an
+  // orthographic view, from the world (ExactSource::screen_cross_sign), else
+  // exactly, fraction-free. Counted as CGAL's.
   CGAL::Orientation orient(const P2& p, VertexId ip, const P2& q, VertexId iq, const P2& r, VertexId ir) const {
 #ifdef VISMAP_FLOAT_KERNEL
     (void)ip, (void)iq, (void)ir;
@@ -1508,6 +1509,11 @@ struct Cutter {
           };
           for (int row : {0, 1})
             if (same(ip, iq, row) && same(ip, ir, row)) return 0;
+          // Three images seen orthographically: the world decides (binary floats).
+          if (!ss.exact->perspective && ip >= 0 && iq >= 0 && ir >= 0) {
+            const auto a = static_cast<std::uint32_t>(ip);
+            return ss.exact->screen_cross_sign(a, static_cast<std::uint32_t>(iq), a, static_cast<std::uint32_t>(ir));
+          }
           return orient_sign(exact_x(p), exact_y(p), exact_x(q), exact_y(q), exact_x(r), exact_y(r));
         });
 #endif
