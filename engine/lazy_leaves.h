@@ -148,24 +148,40 @@ struct ExactSource {
   // In an orthographic view, the sign of the screen cross product of the images
   // of b - a and d - c (input vertices): (r.v)(u.w) - (u.v)(r.w) = (r x u).(v x w)
   // (Binet-Cauchy), r and u the rows giving x and y, v = b - a, w = d - c; the
-  // screen scale 2^k, on both coordinates, leaves the sign. In binary floats (no
-  // gcd, no image's exact value made); parallel in the world (edges of aligned
-  // parts, mostly) is a zero found on v x w alone.
+  // screen scale 2^k, on both coordinates, leaves the sign. Segments along world
+  // axes with no arithmetic, else in binary floats (no gcd, no image's exact
+  // value made). (Asked where intervals on the images failed: mostly exact
+  // zeros, which a filter on doubles would only delay.)
   int screen_cross_sign(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) const {
     using M = CGAL::Mpzf;
     const Vec3 &A = (*vertices)[a], &B = (*vertices)[b], &C = (*vertices)[c], &D = (*vertices)[d];
-    // Both along one world axis (a difference of doubles is 0 exactly where
-    // they are equal): parallel, with no arithmetic.
-    auto axis = [](const Vec3& p, const Vec3& q) {
+    const auto &r = m[0], &u = m[1];
+    // Each along one world axis (a difference of doubles is 0 exactly where
+    // they are equal): along the same one, parallel; along axes i and j, v x w
+    // is v_i w_j (or its negative) times the third axis, so the sign is that
+    // of (r x u) on it times the signs of v_i and w_j. No arithmetic on the
+    // coordinates (views along a plane of two axes see those two as parallel).
+    auto axis = [](const Vec3& p, const Vec3& q, int& sign) {
       const bool x = p.x != q.x, y = p.y != q.y, z = p.z != q.z;
-      return x + y + z != 1 ? -1 : x ? 0 : y ? 1 : 2;
+      if (x + y + z != 1) return -1;
+      const int k = x ? 0 : y ? 1 : 2;
+      const double from = k == 0 ? p.x : k == 1 ? p.y : p.z, to = k == 0 ? q.x : k == 1 ? q.y : q.z;
+      sign = to > from ? 1 : -1;
+      return k;
     };
-    if (const int k = axis(A, B); k >= 0 && k == axis(C, D)) return 0;
+    int sv = 0, sw = 0;
+    if (const int i = axis(A, B, sv), j = axis(C, D, sw); i >= 0 && j >= 0) {
+      if (i == j) return 0;
+      const int third = 3 - i - j, i1 = (third + 1) % 3, i2 = (third + 2) % 3;   // (i1, i2, third) cyclic
+      const int n = (M(r[static_cast<std::size_t>(i1)]) * M(u[static_cast<std::size_t>(i2)]) -
+                     M(r[static_cast<std::size_t>(i2)]) * M(u[static_cast<std::size_t>(i1)]))
+                        .sign();
+      return n * sv * sw * (i == i1 ? 1 : -1);
+    }
     const M vx = M(B.x) - M(A.x), vy = M(B.y) - M(A.y), vz = M(B.z) - M(A.z);
     const M wx = M(D.x) - M(C.x), wy = M(D.y) - M(C.y), wz = M(D.z) - M(C.z);
     const M cx = vy * wz - vz * wy, cy = vz * wx - vx * wz, cz = vx * wy - vy * wx;
     if (cx.sign() == 0 && cy.sign() == 0 && cz.sign() == 0) return 0;
-    const auto &r = m[0], &u = m[1];
     const M nx = M(r[1]) * M(u[2]) - M(r[2]) * M(u[1]), ny = M(r[2]) * M(u[0]) - M(r[0]) * M(u[2]),
             nz = M(r[0]) * M(u[1]) - M(r[1]) * M(u[0]);
     return (nx * cx + ny * cy + nz * cz).sign();
