@@ -442,6 +442,20 @@ TEST(ProjectedBounds, HoldTheExactValueAsTightlyAsMpzf) {
   EXPECT_EQ(as_mpzf, checked);
 }
 
+// The orthographic view along d of the points `world`, and `source` (what lazy
+// exact values come from) set to see them through it.
+vismap::View look_along(const std::array<double, 3>& d, const std::vector<vismap::Vec3>& world,
+                        vismap::exact::ExactSource& source) {
+  vismap::Scene scene;
+  scene.vertices = world;
+  vismap::Camera cam;
+  cam.dir = vismap::Vec3{d[0], d[1], d[2]};
+  const vismap::View view = vismap::make_view(cam, scene);
+  source.vertices = &world;
+  source.m = view.m;
+  return view;
+}
+
 // Images on one screen line, told by the world (ExactSource::same_screen_coordinate):
 // wherever it says two vertices have one screen x (or y), their exact projected
 // values are equal; and on views along an axis, whose rows read one or two world
@@ -457,14 +471,8 @@ TEST(ScreenLines, ImagesToldOnOneLineByTheWorldAreSo) {
   int told = 0, pairs_sharing = 0;
   for (const std::array<double, 3>& d : std::vector<std::array<double, 3>>{
            {0, -1, 0}, {-1, 0, 0}, {-0.866, 0, -0.5}, {0, 0.866, -0.5}, {-1, -2, -3}, {0.3, 0, -1}}) {
-    vismap::Scene scene;
-    scene.vertices = world;
-    vismap::Camera cam;
-    cam.dir = vismap::Vec3{d[0], d[1], d[2]};
-    const vismap::View view = vismap::make_view(cam, scene);
     vismap::exact::ExactSource source;
-    source.vertices = &world;
-    source.m = view.m;
+    const vismap::View view = look_along(d, world, source);
     for (std::uint32_t a = 0; a < world.size(); ++a)
       for (std::uint32_t b = 0; b < world.size(); ++b)
         for (int r : {0, 1}) {
@@ -502,14 +510,8 @@ TEST(ScreenLines, CrossProductSignsFromTheWorldAreTheImages) {
   int zeros = 0, signs = 0;
   for (const std::array<double, 3>& d : std::vector<std::array<double, 3>>{
            {0, -1, 0}, {-0.866, 0, -0.5}, {-1, -2, -3}, {0.3, 0.1, -1}}) {
-    vismap::Scene scene;
-    scene.vertices = world;
-    vismap::Camera cam;
-    cam.dir = vismap::Vec3{d[0], d[1], d[2]};
-    const vismap::View view = vismap::make_view(cam, scene);
     vismap::exact::ExactSource source;
-    source.vertices = &world;
-    source.m = view.m;
+    look_along(d, world, source);
     source.k = 3;
     auto image = [&](std::uint32_t v, int r) { return mpq_class(source.row_at(r, v, true)); };
     for (std::uint32_t a = 0; a < n; a += 3)
