@@ -124,18 +124,21 @@ inline bool between_on_line(const P2& p, const P2& q, const P2& r, bool strictly
                   : CGAL::collinear_are_ordered_along_line(p, q, r);
 }
 #else
+// u against v where their bounds tell: apart, or one double.
+inline bool told_by_bounds(const Interval& u, const Interval& v, CGAL::Comparison_result& c) {
+  if (u.sup() < v.inf()) c = CGAL::SMALLER;
+  else if (v.sup() < u.inf()) c = CGAL::LARGER;
+  else if (u.is_point() && v.is_point()) c = CGAL::EQUAL;   // (not apart: the same double)
+  else return false;
+  return true;
+}
 // a and b lexicographically (x, then y).
 inline CGAL::Comparison_result compare_xy_exactly(const P2& a, const P2& b) {
   ++filter_counts.calls;
-  auto told = [](const Interval& u, const Interval& v, CGAL::Comparison_result& c) {
-    if (u.sup() < v.inf()) c = CGAL::SMALLER;
-    else if (v.sup() < u.inf()) c = CGAL::LARGER;
-    else if (u.is_point() && v.is_point()) c = CGAL::EQUAL;   // (not apart: the same double)
-    else return false;
-    return true;
-  };
   CGAL::Comparison_result c;
-  if (told(approx_x(a), approx_x(b), c) && (c != CGAL::EQUAL || told(approx_y(a), approx_y(b), c))) return c;
+  if (told_by_bounds(approx_x(a), approx_x(b), c) &&
+      (c != CGAL::EQUAL || told_by_bounds(approx_y(a), approx_y(b), c)))
+    return c;
   ++filter_counts.exact;
   return CGAL::compare_xy(CGAL::exact(a), CGAL::exact(b));
 }
@@ -146,10 +149,8 @@ inline CGAL::Comparison_result compare_xy_exactly(const P2& a, const P2& b) {
 inline CGAL::Comparison_result compare_coordinate_exactly(const P2& a, const P2& b, bool along_x) {
   ++filter_counts.calls;
   if (same_rep(a, b)) return CGAL::EQUAL;   // (a point cut on several curves: one object)
-  const Interval u = along_x ? approx_x(a) : approx_y(a), v = along_x ? approx_x(b) : approx_y(b);
-  if (u.sup() < v.inf()) return CGAL::SMALLER;
-  if (v.sup() < u.inf()) return CGAL::LARGER;
-  if (u.is_point() && v.is_point()) return CGAL::EQUAL;   // (not apart: the same double)
+  CGAL::Comparison_result c;
+  if (told_by_bounds(along_x ? approx_x(a) : approx_y(a), along_x ? approx_x(b) : approx_y(b), c)) return c;
   ++filter_counts.exact;
   const auto &ea = CGAL::exact(a), &eb = CGAL::exact(b);
   return along_x ? CGAL::compare_x(ea, eb) : CGAL::compare_y(ea, eb);
