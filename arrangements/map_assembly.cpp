@@ -275,6 +275,17 @@ struct Assembly {
   int target(int h) const { return g.ends[h >> 1][(h & 1) ^ 1]; }
   const P2& at(int w) const { return g.points[w]; }
 
+  // CGAL::orientation of vertices u, v, w: on their intervals where those tell
+  // (the caller holds UpwardRounding), else exactly.
+  CGAL::Orientation turn(int u, int v, int w) const {
+    return filtered_sign(
+        [&] {
+          const auto &p = g.approx[u], &q = g.approx[v], &r = g.approx[w];
+          return (q.x() - p.x()) * (r.y() - p.y()) - (q.y() - p.y()) * (r.x() - p.x());
+        },
+        [&] { return mpq_class(static_cast<int>(CGAL::orientation(CGAL::exact(at(u)), CGAL::exact(at(v)), CGAL::exact(at(w))))); });
+  }
+
   // Edges around each vertex, counter-clockwise; then each halfedge's next.
   void sort_around_vertices() {
     nverts = static_cast<int>(g.points.size());
@@ -286,19 +297,24 @@ struct Assembly {
     std::vector<int> fill(first.begin(), first.end() - 1);
     for (int h = 0; h < nhalf; ++h) rot[fill[source(h)]++] = h;
     upper.resize(nhalf);
-    engine::parallel_chunks(nhalf, 16384, threads, [&](int, engine::Chunk r) {
-      for (int h = r.begin; h < r.end; ++h) {
-        const CGAL::Comparison_result dy = CGAL::compare_y(at(target(h)), at(source(h)));
+    // (An edge's two halfedges point opposite ways: one each. Compared on the
+    // points' bounds, without CGAL's rounding switch at every call.)
+    engine::parallel_chunks(nhalf / 2, 8192, threads, [&](int, engine::Chunk r) {
+      for (int e = r.begin; e < r.end; ++e) {
+        const int h = 2 * e;
+        const CGAL::Comparison_result dy = compare_coordinate_exactly(at(target(h)), at(source(h)), false);
         upper[h] = dy == CGAL::LARGER || (dy == CGAL::EQUAL && target(h) > source(h));
+        upper[h + 1] = !upper[h];
       }
     });
     // Each vertex's edges, and their places around it: chunks of vertices in parallel.
     pos.resize(nhalf);
     engine::parallel_chunks(nverts, 4096, threads, [&](int, engine::Chunk r) {
+      UpwardRounding upward;   // (turn's intervals: one rounding switch per chunk)
       for (int w = r.begin; w < r.end; ++w) {
         auto before = [&](int h1, int h2) {
           if (upper[h1] != upper[h2]) return upper[h1] > upper[h2];
-          const CGAL::Orientation o = CGAL::orientation(at(w), at(target(h1)), at(target(h2)));
+          const CGAL::Orientation o = turn(w, target(h1), target(h2));
           if (o == CGAL::COLLINEAR && h1 != h2) broken("overlapping pieces with different end points");
           return o == CGAL::LEFT_TURN;
         };
