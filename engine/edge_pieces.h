@@ -10,11 +10,13 @@
 
 namespace vismap::engine {
 
+// (8 bytes: a million pieces hold one or two inline.)
 struct Sharer {
   int facet;
-  std::uint32_t edge;  // facet edge index (v[edge] -> v[edge+1]); facets may have 10^6 corners
-  bool forward;        // the facet's edge runs from a to b
+  std::uint32_t edge : 31;     // facet edge index (v[edge] -> v[edge+1]); facets may have 10^6 corners
+  std::uint32_t forward : 1;   // the facet's edge runs from a to b
 };
+static_assert(sizeof(Sharer) == 8);
 
 struct WorldPiece {
   std::uint32_t a, b;             // canonical vertex ids of the end points

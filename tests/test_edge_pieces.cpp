@@ -115,7 +115,7 @@ Pieces engine_pieces(const Scene& scene, const WorldFacets& wf, int bits) {
     EXPECT_EQ(out.count(k), 0u) << "piece " << wp.a << "-" << wp.b << " given twice";
     auto& slot = out[k];
     slot.first = Key{wp.a, wp.b};
-    for (const Sharer& s : wp.sharers) slot.second.emplace_back(s.facet, s.edge, s.forward);
+    for (const Sharer& s : wp.sharers) slot.second.emplace_back(s.facet, std::uint32_t{s.edge}, s.forward != 0);
     EXPECT_TRUE(std::is_sorted(slot.second.begin(), slot.second.end()));
   }
   return out;
