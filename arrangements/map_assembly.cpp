@@ -505,19 +505,35 @@ int face_below(const Assembly& a, const Columns& cols, int w) {
 void add_edges(std::vector<MapPiece>& pieces, MapGraph& g, int threads) {
   std::vector<int> vertex_of = number_end_points(pieces, g, threads);
   const int n = static_cast<int>(pieces.size()), size = 16384;
-  std::vector<int> order(pieces.size());
   engine::parallel_chunks(n, size, threads, [&](int, engine::Chunk r) {
     for (int i = r.begin; i < r.end; ++i) {
       MapPiece& m = pieces[i];
       int &u = vertex_of[2 * i], &v = vertex_of[2 * i + 1];
       if (u == v) broken("a piece of length zero");
       if (v < u) { std::swap(m.a, m.b); std::swap(m.left, m.right); std::swap(u, v); }
-      order[i] = i;
     }
   });
   auto key = [&](int i) { return std::pair(vertex_of[2 * i], vertex_of[2 * i + 1]); };
-  engine::parallel_sort(order.begin(), order.end(), [&](int i, int j) { return std::pair(key(i), i) < std::pair(key(j), j); },
-                        threads);
+  // The pieces in order of (key, piece): by u in a counting sort (vertices are
+  // numbers; each lists its pieces in piece order), then each vertex's few by v.
+  // (A comparison sort of 10^6 pieces read both keys at random.)
+  const engine::Buckets by_u = engine::bucket_items(n, g.points.size(), threads, [&](int i, auto&& in) {
+    in(static_cast<std::size_t>(vertex_of[2 * static_cast<std::size_t>(i)]));
+  });
+  std::vector<int> order(by_u.items.begin(), by_u.items.end());
+  engine::parallel_chunks(static_cast<int>(g.points.size()), 4096, threads, [&](int, engine::Chunk r) {
+    auto before = [&](int i, int j) { return std::pair(key(i), i) < std::pair(key(j), j); };
+    for (int u = r.begin; u < r.end; ++u) {
+      const auto b = order.begin() + by_u.first[static_cast<std::size_t>(u)];
+      const auto e = order.begin() + by_u.first[static_cast<std::size_t>(u) + 1];
+      if (e - b <= 16) {   // (insertion: most vertices have a handful)
+        for (auto i = b; i != e; ++i)
+          for (auto j = i; j != b && before(*j, *(j - 1)); --j) std::iter_swap(j, j - 1);
+      } else {
+        std::sort(b, e, before);
+      }
+    }
+  });
   // One edge per run of equal keys: where the runs start (chunks of the order
   // side by side, appended in order), then each edge (in chunks).
   std::vector<int> starts;
