@@ -283,7 +283,10 @@ struct Assembly {
           const auto &p = g.approx[u], &q = g.approx[v], &r = g.approx[w];
           return (q.x() - p.x()) * (r.y() - p.y()) - (q.y() - p.y()) * (r.x() - p.x());
         },
-        [&] { return mpq_class(static_cast<int>(CGAL::orientation(CGAL::exact(at(u)), CGAL::exact(at(v)), CGAL::exact(at(w))))); });
+        [&] {
+          const CGAL::Orientation o = CGAL::orientation(CGAL::exact(at(u)), CGAL::exact(at(v)), CGAL::exact(at(w)));
+          return mpq_class(static_cast<int>(o));
+        });
   }
 
   // Edges around each vertex, counter-clockwise; then each halfedge's next.
