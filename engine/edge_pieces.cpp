@@ -24,8 +24,6 @@ struct Edge {
   std::uint32_t p, q;   // vertex ids, facet order
 };
 
-double coord(const Vec3& v, int k) { return k == 0 ? v.x : k == 1 ? v.y : v.z; }
-
 // The line through two distinct points: the first axis along which it moves,
 // and whether it moves up that axis from the first point to the second.
 struct LineDir {
@@ -34,7 +32,7 @@ struct LineDir {
 };
 LineDir line_dir(const Vec3& a, const Vec3& b) {
   const std::uint8_t axis = a.x != b.x ? 0 : a.y != b.y ? 1 : 2;
-  return {axis, coord(a, axis) < coord(b, axis)};
+  return {axis, coordinate(a, axis) < coordinate(b, axis)};
 }
 
 // The supporting line of p->q as an exact canonical key: the first axis k along
@@ -52,12 +50,12 @@ LineKey line_key(const Vec3& p, const Vec3& q, int k) {
   using M = CGAL::Mpzf;
   LineKey key;
   key.axis = k;
-  const M pk(coord(p, k)), qk(coord(q, k));
+  const M pk(coordinate(p, k)), qk(coordinate(q, k));
   M d = qk - pk;
   int slot = 0;
   for (int j = 0; j < 3; ++j) {
     if (j == k) continue;
-    const M pj(coord(p, j)), qj(coord(q, j));
+    const M pj(coordinate(p, j)), qj(coordinate(q, j));
     key.num[slot] = qj - pj;                      // slope (q_j - p_j) / d
     key.num[slot + 2] = pj * qk - pk * qj;        // offset p_j - p_k slope = (p_j q_k - p_k q_j) / d
     ++slot;
@@ -118,12 +116,12 @@ std::uint64_t cells_of(const LineKey& key, const Cells& cells) {
 // interval (a slope of exactly 1 is on a border: its bound straddles it).
 bool cells_from_intervals(const Vec3& p, const Vec3& q, int k, const Cells& cells, std::uint64_t& h) {
   using I = CGAL::Interval_nt<false>;
-  const I pk(coord(p, k)), dk = I(coord(q, k)) - pk;
+  const I pk(coordinate(p, k)), dk = I(coordinate(q, k)) - pk;
   std::array<I, 4> r;
   int slot = 0;
   for (int j = 0; j < 3; ++j) {
     if (j == k) continue;
-    const I pj(coord(p, j)), slope = (I(coord(q, j)) - pj) / dk;
+    const I pj(coordinate(p, j)), slope = (I(coordinate(q, j)) - pj) / dk;
     r[slot] = slope;
     r[slot + 2] = pj - pk * slope;
     ++slot;
@@ -163,12 +161,12 @@ bool cell_within(double v, double err, const Cells& cells, std::uint64_t& c) {
 // below also covers rounding v -/+ err. An exact zero difference is exact.
 bool cells_from_doubles(const Vec3& p, const Vec3& q, int k, const Cells& cells, std::uint64_t& h) {
   constexpr double u = 0x1p-53;
-  const double pk = coord(p, k), dk = coord(q, k) - pk;
+  const double pk = coordinate(p, k), dk = coordinate(q, k) - pk;
   std::array<std::uint64_t, 4> c;   // the slopes' cells, then the offsets'
   int slot = 0;
   for (int j = 0; j < 3; ++j) {
     if (j == k) continue;
-    const double pj = coord(p, j), a = coord(q, j) - pj;
+    const double pj = coordinate(p, j), a = coordinate(q, j) - pj;
     if (a == 0) {   // (slope 0, offset p_j: both exact)
       c[slot] = 0;
       c[slot + 2] = cells.of(pj);
@@ -454,7 +452,7 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
     events.clear();
     for (std::size_t i = 0; i < n; ++i) {
       const Edge& e = edges[line[i]];
-      const double tp = coord(vertex(e.p), k), tq = coord(vertex(e.q), k);
+      const double tp = coordinate(vertex(e.p), k), tq = coordinate(vertex(e.q), k);
       const bool fwd = tp < tq;
       events.push_back({fwd ? tp : tq, fwd ? e.p : e.q, line[i], true});
       events.push_back({fwd ? tq : tp, fwd ? e.q : e.p, line[i], false});
@@ -474,7 +472,7 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
         WorldPiece piece{here, events[j].vertex, {}};
         for (auto ei : active) {
           const Edge& e = edges[ei];
-          piece.sharers.push_back(sharer(e, coord(vertex(e.p), k) < coord(vertex(e.q), k)));
+          piece.sharers.push_back(sharer(e, coordinate(vertex(e.p), k) < coordinate(vertex(e.q), k)));
         }
         std::sort(piece.sharers.begin(), piece.sharers.end(), by_facet);
         pieces.push_back(std::move(piece));

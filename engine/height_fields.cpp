@@ -19,8 +19,6 @@ namespace {
 using K = CGAL::Epick;   // (predicates only: exact on the input's doubles)
 using Point = K::Point_2;
 
-double coordinate(const Vec3& p, int k) { return k == 0 ? p.x : k == 1 ? p.y : p.z; }
-
 // A coordinate plane as a component is seen in: the two axes other than the
 // one looked along, in the order that makes its triangles turn positively.
 struct Plane {

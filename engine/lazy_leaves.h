@@ -165,8 +165,7 @@ struct ExactSource {
       const bool x = p.x != q.x, y = p.y != q.y, z = p.z != q.z;
       if (x + y + z != 1) return -1;
       const int k = x ? 0 : y ? 1 : 2;
-      const double from = k == 0 ? p.x : k == 1 ? p.y : p.z, to = k == 0 ? q.x : k == 1 ? q.y : q.z;
-      sign = to > from ? 1 : -1;
+      sign = coordinate(q, k) > coordinate(p, k) ? 1 : -1;
       return k;
     };
     int sv = 0, sw = 0;

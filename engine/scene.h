@@ -10,6 +10,9 @@
 
 namespace vismap {
 
+// Coordinate k of p (0: x, 1: y, 2: z).
+inline double coordinate(const Vec3& p, int k) { return k == 0 ? p.x : k == 1 ? p.y : p.z; }
+
 // --- Memory -------------------------------------------------------------------------
 // Estimated peak memory of a run on a scene: the file's bytes plus the engine's
 // working set per vertex, face and face corner. Measured peaks (docs/cli.md, "Limits"):

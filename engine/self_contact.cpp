@@ -109,8 +109,6 @@ Fans fans(const Scene& scene, const WorldFacets& wf, const std::vector<int>& fac
 // the screen: engine/embedded_stars.h); only the axis and coordinates differ.
 // Exact: orientations and comparisons of input doubles.
 class FlatStars {
-  static double coordinate(const Vec3& p, int k) { return k == 0 ? p.x : k == 1 ? p.y : p.z; }
-
  public:
   FlatStars(const Fans& fans, int threads) : flat_(fans.vertices, 0) {
     // Each vertex's triangles (compressed rows, by local number).
