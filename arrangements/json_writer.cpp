@@ -22,9 +22,11 @@ void quoted(std::string& out, const std::string& s) {
   out += '"';
 }
 
+// (A map's numbers are GMP's, in lowest terms: engines make them by its
+// arithmetic, or canonicalise what they assemble from integers.)
 void number(std::string& out, const mpq_class& q) {
   out += '"';
-  append_canonical(out, q);
+  append_lowest_terms(out, q);
   out += '"';
 }
 

@@ -1,5 +1,6 @@
 #include "arrangements/rational.h"
 
+#include <cassert>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -64,6 +65,23 @@ void append_canonical(std::string& out, const mpq_class& q) {
   mpq_class c(q);
   c.canonicalize();   // lowest terms, positive denominator
   append_digits(out, c);
+}
+
+// Whether q is in the form GMP's arithmetic keeps it in: lowest terms, denominator
+// positive (0 as 0/1).
+bool in_lowest_terms(const mpq_class& q) {
+  if (mpz_sgn(q.get_den_mpz_t()) <= 0) return false;
+  mpz_class g;
+  mpz_gcd(g.get_mpz_t(), q.get_num_mpz_t(), q.get_den_mpz_t());
+  return g == 1;
+}
+
+void append_lowest_terms(std::string& out, const mpq_class& q) {
+  assert(in_lowest_terms(q));
+  const mpz_srcptr num = q.get_num_mpz_t(), den = q.get_den_mpz_t();
+  const mp_bitcnt_t twos = mpz_scan1(den, 0);
+  if (mpz_sizeinbase(den, 2) == twos + 1 && twos < 4096) append_dyadic_digits(out, num, twos);
+  else append_digits(out, q);
 }
 
 std::string canonical(const mpq_class& q) {

@@ -328,4 +328,47 @@ TEST(Canonical, LowestTermsWhateverTheInput) {
       }
 }
 
+// The map writer's numbers are GMP's, in lowest terms already: append_lowest_terms
+// writes them as canonical() would, without its gcd; in_lowest_terms (its check
+// where assertions are on) tells the values GMP's arithmetic leaves from raw ones.
+TEST(Canonical, LowestTermsTakenAsTheyAre) {
+  auto raw = [](long n, long d) {
+    mpq_class q;
+    q.get_num() = n;
+    q.get_den() = d;
+    return q;
+  };
+  for (const mpq_class& q : {raw(2, 4), raw(0, 8), raw(6, 9), raw(3, -4), raw(0, -1)})
+    EXPECT_FALSE(in_lowest_terms(q)) << q.get_num() << " / " << q.get_den();
+  std::mt19937_64 rng(11);
+  auto big = [&](int limbs) {
+    mpz_class n = 0;
+    for (int l = 0; l < limbs; ++l) n = (n << 64) + mpz_class(std::to_string(rng()));
+    return rng() % 2 ? mpz_class(-n) : n;
+  };
+  int dyadic = 0, other = 0;
+  for (int i = 0; i < 400; ++i) {
+    // Quotients and sums as an engine makes them: crossings over any
+    // denominator, coordinates over powers of two, integers, zero.
+    mpq_class q;
+    switch (i % 4) {
+      case 0: q = mpq_class(big(1 + i % 3)) / mpq_class(big(1 + i % 2) + 1); break;
+      case 1: q = mpq_class(big(2)) / mpq_class(mpz_class(1) << (i % 200)); break;
+      case 2: q = mpq_class(big(1)); break;
+      default: q = mpq_class(big(1)) / 3 - mpq_class(big(1)) / 6 + mpq_class(1, 2); break;
+    }
+    ASSERT_TRUE(in_lowest_terms(q)) << q;
+    (mpz_scan1(q.get_den_mpz_t(), 0) + 1 == mpz_sizeinbase(q.get_den_mpz_t(), 2) ? dyadic : other) += 1;
+    std::string t = "v ";
+    append_lowest_terms(t, q);
+    EXPECT_EQ(t, "v " + canonical(q)) << q;
+  }
+  EXPECT_GT(dyadic, 100);
+  EXPECT_GT(other, 100);
+  EXPECT_TRUE(in_lowest_terms(mpq_class(0)));
+  std::string zero;
+  append_lowest_terms(zero, mpq_class(-0.0));
+  EXPECT_EQ(zero, "0");
+}
+
 }  // namespace
