@@ -481,6 +481,13 @@ struct CurveMaker {
   P3 make_image(std::uint32_t u) const;
   // Its intervals, as the image made would have them.
   ImageBounds bounds_of(std::uint32_t u) const;
+  // Asks for the input vertex a few places after place u, ahead of its use: the
+  // places are in screen order, not the input's, and each place's vertex was a
+  // cache miss (a 10^6-triangle terrain's image bounds: 63-65 -> 56-60 ms).
+  void fetch_after(std::size_t u) const {
+    constexpr std::size_t ahead = 16;
+    if (u + ahead < used.size()) __builtin_prefetch(&scene->vertices[used[u + ahead]]);
+  }
   // The box of vertex id's image (its kept intervals where it is left for later).
   CGAL::Bbox_2 image_box(std::uint32_t id) const {
     return bounds ? box_of(bounds[local[id]]) : box_of(image(id));
@@ -1097,13 +1104,16 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   ss.images = ImageTable(used.size());
   if (later) {
     ss.image_bounds = parallel_make<ImageBounds>(nu, 1024, threads, [&](int, int u, ImageBounds& b) {
+      M.fetch_after(static_cast<std::size_t>(u));
       b = M.bounds_of(static_cast<std::uint32_t>(u));
     });
     M.bounds = ss.image_bounds.data();
   } else {
     parallel_chunks(nu, 1024, threads, [&](int, Chunk r) {
-      for (int u = r.begin; u < r.end; ++u)
+      for (int u = r.begin; u < r.end; ++u) {
+        M.fetch_after(static_cast<std::size_t>(u));
         if (front[static_cast<std::size_t>(u)]) ss.images.make(static_cast<std::size_t>(u), M.make_image(static_cast<std::uint32_t>(u)));
+      }
     });
   }
   M.sv = ss.images.data();
