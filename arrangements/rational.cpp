@@ -51,20 +51,18 @@ void append_dyadic_digits(std::string& out, mpz_srcptr n, mp_bitcnt_t k) {
 }  // namespace
 
 void append_canonical(std::string& out, const mpq_class& q) {
-  // GMP's arithmetic keeps every value in lowest terms; a map's numbers are
-  // made by it, so this mostly only checks: without a gcd where the denominator
-  // is a power of two (an orthographic view's coordinates), whose fraction is
-  // in lowest terms when the numerator is odd or the denominator 1.
+  // Told without a gcd where the denominator is a power of two (an orthographic
+  // view's coordinates): such a fraction is in lowest terms when its numerator
+  // is odd or its denominator 1.
   const mpz_srcptr num = q.get_num_mpz_t(), den = q.get_den_mpz_t();
   const mp_bitcnt_t twos = mpz_scan1(den, 0);
   if (mpz_sgn(den) > 0 && mpz_sizeinbase(den, 2) == twos + 1 && (twos == 0 || mpz_odd_p(num))) {
-    if (twos < 4096) append_dyadic_digits(out, num, twos);   // (beyond: rare, not kept)
-    else append_digits(out, q);
+    append_lowest_terms(out, q);
     return;
   }
   mpq_class c(q);
   c.canonicalize();   // lowest terms, positive denominator
-  append_digits(out, c);
+  append_lowest_terms(out, c);
 }
 
 // Whether q is in the form GMP's arithmetic keeps it in: lowest terms, denominator
@@ -80,6 +78,7 @@ void append_lowest_terms(std::string& out, const mpq_class& q) {
   assert(in_lowest_terms(q));
   const mpz_srcptr num = q.get_num_mpz_t(), den = q.get_den_mpz_t();
   const mp_bitcnt_t twos = mpz_scan1(den, 0);
+  // (Denominators of 2^4096 and beyond, rare: GMP's own text; those digits are not kept.)
   if (mpz_sizeinbase(den, 2) == twos + 1 && twos < 4096) append_dyadic_digits(out, num, twos);
   else append_digits(out, q);
 }

@@ -16,6 +16,7 @@ void append_canonical(std::string& out, const mpq_class& q);
 // is not a fraction over a power of two (a perspective map's are not: ~30 % of
 // a 10^6-triangle terrain's JSON writing). Checked where assertions are on.
 void append_lowest_terms(std::string& out, const mpq_class& q);
+// Whether q is so (a gcd): append_lowest_terms' precondition.
 bool in_lowest_terms(const mpq_class& q);
 
 // The double nearest to q (ties to even; subnormals and overflow to infinity as
