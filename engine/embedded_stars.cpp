@@ -36,13 +36,13 @@ struct Triangles {
 };
 
 Triangles triangles_of(const ScreenScene& ss, int threads) {
-  const int nf = static_cast<int>(ss.facets.size()), size = 4096;
+  const int nf = static_cast<int>(ss.facet_count()), size = 4096;
   Triangles t;
-  t.of_facet.resize(ss.facets.size());
+  t.of_facet.resize(ss.facet_count());
   std::vector<std::vector<VertexId>> spoilt(static_cast<std::size_t>(chunk_count(nf, size)));
   parallel_chunks(nf, size, threads, [&](int c, Chunk r) {
     for (int fi = r.begin; fi < r.end; ++fi) {
-      const Facet& f = ss.facets[static_cast<std::size_t>(fi)];
+      const Facet& f = ss.facet(static_cast<std::size_t>(fi));
       Triangle& tri = t.of_facet[static_cast<std::size_t>(fi)];
       if (!plain_triangle(f)) {
         tri.id[0] = -1;

@@ -143,6 +143,8 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   // curves go once the map pieces are made (these point at the curves' end
   // points and faces lists, not at the curves), before the graph is built.
   release(ss.facets, threads);
+  std::vector<FacetBrief>().swap(ss.briefs);
+  std::vector<std::uint32_t>().swap(ss.made_at);
   std::vector<std::vector<DepthPlane>>().swap(ss.planes);
   const std::vector<FacesList> faces = faces_lists(ss.curves, threads);
   std::vector<MapPiece> mp = map_pieces(pieces, ss.curves, faces, threads);

@@ -219,12 +219,14 @@ CGAL::Bbox_2 curve_box(const ScreenScene& ss, std::size_t i) {
 // A facet's share of the depth complexity: its projected area in the grid's own
 // coordinates (doubles: it only sizes the grid), scaled by how its bounding box
 // is stretched there; 0 for a facet that hides nothing.
-double facet_area(const ScreenScene& ss, const Facet& f, const Axis& X, const Axis& Y) {
+double facet_area(const ScreenScene& ss, std::size_t fi, const Axis& X, const Axis& Y) {
+  const FacetBrief& f = ss.brief(fi);
   if (!f.occluder) return 0;
-  const std::size_t n = f.v.size();
+  const SmallVec<const P3*, 4> v = corners_of(ss, fi);   // (its Facet may not be made yet)
+  const std::size_t n = v.size();
   double a = 0;
   for (std::size_t k = 0; k < n; ++k) {
-    const P3 &p = f.v[k], &q = f.v[(k + 1) % n];
+    const P3 &p = *v[k], &q = *v[(k + 1) % n];
     a += CGAL::to_double(ss.x_of(p)) * CGAL::to_double(ss.y_of(q)) - CGAL::to_double(ss.x_of(q)) * CGAL::to_double(ss.y_of(p));
   }
   const double w = f.box.xmax() - f.box.xmin(), h = f.box.ymax() - f.box.ymin();
@@ -242,12 +244,12 @@ double facet_area(const ScreenScene& ss, const Facet& f, const Axis& X, const Ax
 // sum. Chunks of the sample in parallel, their sums added in chunk order: the
 // same for every thread count.
 double depth_complexity(const ScreenScene& ss, const Axis& X, const Axis& Y, int threads) {
-  const std::size_t nf = ss.facets.size(), step = std::max<std::size_t>(1, nf >> 16);
+  const std::size_t nf = ss.facet_count(), step = std::max<std::size_t>(1, nf >> 16);
   const int n = static_cast<int>((nf + step - 1) / step), size = 8192;
   std::vector<double> part(static_cast<std::size_t>(chunk_count(n, size)), 0);
   parallel_chunks(n, size, threads, [&](int c, Chunk r) {
     double sum = 0;
-    for (int i = r.begin; i < r.end; ++i) sum += facet_area(ss, ss.facets[static_cast<std::size_t>(i) * step], X, Y);
+    for (int i = r.begin; i < r.end; ++i) sum += facet_area(ss, static_cast<std::size_t>(i) * step, X, Y);
     part[static_cast<std::size_t>(c)] = sum;
   });
   double area = 0;
@@ -329,7 +331,7 @@ Axis::Axis(std::vector<double> bounds) : bounds_(std::move(bounds)) {
 // ones), and N, L and the depth complexity are measured in those coordinates.
 Grid make_grid(const ScreenScene& ss, double c, int threads, Stats& stats) {
   // The box of the curves and occluders (chunks of each in parallel).
-  const int ncurves = static_cast<int>(curve_count(ss)), nfacets = static_cast<int>(ss.facets.size());
+  const int ncurves = static_cast<int>(curve_count(ss)), nfacets = static_cast<int>(ss.facet_count());
   const int size = 16384, curve_chunks = chunk_count(ncurves, size);
   std::vector<std::optional<CGAL::Bbox_2>> boxes(static_cast<std::size_t>(curve_chunks + chunk_count(nfacets, size)));
   parallel_for(static_cast<int>(boxes.size()), threads, [&](int k) {
@@ -341,7 +343,7 @@ Grid make_grid(const ScreenScene& ss, double c, int threads, Stats& stats) {
     } else {
       const Chunk r = chunk(k - curve_chunks, nfacets, size);
       for (int i = r.begin; i < r.end; ++i)
-        if (ss.facets[i].occluder) add(ss.facets[i].box);
+        if (ss.brief(i).occluder) add(ss.brief(i).box);
     }
     boxes[static_cast<std::size_t>(k)] = b;
   });
@@ -458,10 +460,10 @@ void mark_kept(std::vector<std::vector<int>>& kept_by_row, std::vector<char>& ke
 // hidden by the blocker there. True if the facet is kept in the cell.
 bool bucket_facet(Grid& g, const ScreenScene& ss, int fi, int ix, int iy, std::int64_t& skipped,
                   std::int64_t& blockers) {
-  const Facet& f = ss.facets[fi];
+  const Facet& f = ss.facet(fi);
   Cell& cell = g.at(ix, iy);
   auto c = corners(g, ix, iy);
-  if (cell.blocker >= 0 && behind_throughout(f, ss.facets[cell.blocker], c)) { ++skipped; return false; }
+  if (cell.blocker >= 0 && behind_throughout(f, ss.facet(cell.blocker), c)) { ++skipped; return false; }
   // Only a planar polygon's facet may block: the edges of its own face lie in
   // its plane, so what is behind it cannot hide them. A non-planar polygon's
   // fan piece can be in front of its own face's edge while another face,
@@ -472,11 +474,11 @@ bool bucket_facet(Grid& g, const ScreenScene& ss, int fi, int ix, int iy, std::i
   bool covers = f.planar && boxed && std::all_of(c.begin(), c.end(), [&](const Corner& p) { return strictly_inside(f, p); });
   if (!covers) { cell.facets.push_back(fi); return true; }
   ++blockers;
-  if (cell.blocker < 0 || behind_throughout(ss.facets[cell.blocker], f, c)) { cell.blocker = fi; return true; }
+  if (cell.blocker < 0 || behind_throughout(ss.facet(cell.blocker), f, c)) { cell.blocker = fi; return true; }
   // Two covering facets that cross inside the cell: the nearer at the centre
   // blocks, the other stays listed.
   P2 mid(FT(g.X[ix] + g.X[ix + 1]) / 2, FT(g.Y[iy] + g.Y[iy + 1]) / 2);
-  const Facet& b = ss.facets[cell.blocker];
+  const Facet& b = ss.facet(cell.blocker);
   bool nearer = f.depth_at(mid) < b.depth_at(mid) || (f.depth_at(mid) == b.depth_at(mid) && f.face < b.face);
   if (nearer) { cell.facets.push_back(cell.blocker); cell.blocker = fi; }
   else cell.facets.push_back(fi);
@@ -523,7 +525,7 @@ DrawingCells drawing_cells(const Grid& g, const ScreenScene& ss, const ImageCell
     return any;
   };
   // The candidates' sharers, and the candidates' cells.
-  d.whole.assign(ss.facets.size(), 0);
+  d.whole.assign(ss.facet_count(), 0);
   d.cell.assign(g.cells.size(), 0);
   for (const Curve& c : ss.curves) {
     const CellRange r = range_of(g, c.box);
@@ -563,38 +565,45 @@ DrawingCells drawing_cells(const Grid& g, const ScreenScene& ss, const ImageCell
 // Rows of cells in parallel. (A lines-only drawing may need only some cells:
 // drawing_cells.)
 void bucket_facets(Grid& g, ScreenScene& ss, bool regions, int threads, Stats& stats) {
-  const int nf = static_cast<int>(ss.facets.size());
+  const int nf = static_cast<int>(ss.facet_count());
   // Each facet's cells, once (the rows below and the pair search read them).
   const ImageCells image_cells(g, ss, threads);
-  g.facet_range.resize(ss.facets.size());
+  g.facet_range.resize(ss.facet_count());
   parallel_chunks(nf, 4096, threads, [&](int, Chunk r) {
     for (int fi = r.begin; fi < r.end; ++fi) {
-      const Facet& f = ss.facets[fi];
       CellRange& range = g.facet_range[static_cast<std::size_t>(fi)];
-      if (!image_cells.hull(f.v, f.v.size(), range)) range = range_of(g, f.box);
+      if (const Facet* f = ss.made_facet(static_cast<std::size_t>(fi))) {
+        if (!image_cells.hull(f->v, f->v.size(), range)) range = range_of(g, f->box);
+        continue;
+      }
+      const SmallVec<const P3*, 4> v = corners_of(ss, static_cast<std::size_t>(fi));
+      if (!image_cells.hull(v, v.size(), range)) range = range_of(g, ss.brief(static_cast<std::size_t>(fi)).box);
     }
   });
   DrawingCells only = drawing_cells(g, ss, image_cells, regions, threads);
   g.latent_near = std::move(only.latent_near);
   auto looked_at = [&](int ix, int iy) { return only.all() || only.cell[static_cast<std::size_t>(iy) * g.X.cells() + ix]; };
-  std::vector<char> listed(ss.facets.size(), 0);
+  std::vector<char> listed(ss.facet_count(), 0);
   const ItemsByRow rows = items_by_row(g, nf, threads, [&](int fi) {
     const CellRange& r = g.facet_range[static_cast<std::size_t>(fi)];
     bool any = only.all();
     for (int iy = r.y0; iy <= r.y1 && !any; ++iy)
       for (int ix = r.x0; ix <= r.x1 && !any; ++ix) any = looked_at(ix, iy);
-    listed[static_cast<std::size_t>(fi)] = ss.facets[fi].occluder && any;
+    listed[static_cast<std::size_t>(fi)] = ss.brief(static_cast<std::size_t>(fi)).occluder && any;
     return listed[static_cast<std::size_t>(fi)] ? std::array<int, 2>{r.y0, r.y1} : kNoRows;
   });
   // The images of what steps 5-11 may read (where they are left for later: a
   // lines-only drawing's), the listed facets' and those of the candidates'
   // sharers; then the depth planes of what is listed (and only of that, for a
   // lines-only drawing).
+  // (Their Facets first, where only briefs were kept: make_facets.)
   if (only.all()) {
+    make_facets(ss, {}, threads);
     make_corner_images(ss, {}, threads);
   } else {
     std::vector<char> read(listed);
     for (std::size_t fi = 0; fi < read.size(); ++fi) read[fi] |= only.whole[fi];
+    make_facets(ss, read, threads);
     make_corner_images(ss, read, threads);
   }
   if (ss.planes_later) make_depth_planes(ss, listed, threads);
@@ -615,13 +624,12 @@ void bucket_facets(Grid& g, ScreenScene& ss, bool regions, int threads, Stats& s
     kept_by_row[row] = std::move(kept_here);
     counts[row] = {skipped, blockers};
   });
-  std::vector<char> kept(ss.facets.size(), 0);
+  std::vector<char> kept(ss.facet_count(), 0);
   mark_kept(kept_by_row, kept);
   std::int64_t hidden_facets = 0, skipped = 0, blockers = 0;
-  for (int fi = 0; fi < nf; ++fi) {
-    Facet& f = ss.facets[fi];
-    const bool known = only.all() || only.whole[static_cast<std::size_t>(fi)];   // (every cell of it looked at)
-    if (f.occluder && known && !kept[static_cast<std::size_t>(fi)]) { f.occluder = false; ++hidden_facets; }   // step 5c
+  for (std::size_t fi = 0; fi < ss.facet_count(); ++fi) {
+    const bool known = only.all() || only.whole[fi];   // (every cell of it looked at)
+    if (ss.brief(fi).occluder && known && !kept[fi]) { ss.set_occluder(fi, false); ++hidden_facets; }   // step 5c
   }
   for (const auto& c : counts) {
     skipped += c[0];
@@ -632,6 +640,7 @@ void bucket_facets(Grid& g, ScreenScene& ss, bool regions, int threads, Stats& s
   stats.count("culled_behind_blocking_face", hidden_facets);
   if (!only.all())
     stats.count("cells_for_drawn_lines", std::count(only.cell.begin(), only.cell.end(), 1));
+  if (ss.lean()) stats.count("facets_made", static_cast<std::int64_t>(ss.facets.size()));
 }
 
 // Step 6: drop what the final blocker hides (it may have changed after a facet
@@ -645,8 +654,8 @@ void prune_facets(Grid& g, const ScreenScene& ss, int threads, Stats& stats) {
       Cell& cell = g.at(ix, iy);
       if (cell.blocker < 0) continue;
       auto c = corners(g, ix, iy);
-      const Facet& b = ss.facets[cell.blocker];
-      auto hidden = [&](int fi) { return fi == cell.blocker || behind_throughout(ss.facets[fi], b, c); };
+      const Facet& b = ss.facet(cell.blocker);
+      auto hidden = [&](int fi) { return fi == cell.blocker || behind_throughout(ss.facet(fi), b, c); };
       std::size_t before = cell.facets.size();
       cell.facets.erase(std::remove_if(cell.facets.begin(), cell.facets.end(), hidden), cell.facets.end());
       pruned += static_cast<std::int64_t>(before - cell.facets.size());
@@ -967,19 +976,19 @@ struct Listing {
 };
 
 Listing listing_of(const Grid& g, const ScreenScene& ss, int threads) {
-  const int nf = static_cast<int>(ss.facets.size());
+  const int nf = static_cast<int>(ss.facet_count());
   Listing l;
   l.range = g.facet_range.data();
   l.columns = g.X.cells();
-  std::vector<int> listed(ss.facets.size(), 0);
+  std::vector<int> listed(ss.facet_count(), 0);
   for (const Cell& cell : g.cells) {
     for (int fi : cell.facets) ++listed[fi];
     if (cell.blocker >= 0) ++listed[cell.blocker];
   }
-  l.complete.resize(ss.facets.size());
-  l.first.assign(ss.facets.size(), 0);
-  l.words.assign(ss.facets.size(), 0);
-  l.cells_first.assign(ss.facets.size() + 1, 0);
+  l.complete.resize(ss.facet_count());
+  l.first.assign(ss.facet_count(), 0);
+  l.words.assign(ss.facet_count(), 0);
+  l.cells_first.assign(ss.facet_count() + 1, 0);
   std::size_t nbits = 0;
   for (int fi = 0; fi < nf; ++fi) {
     const CellRange& r = l.range[fi];
@@ -996,7 +1005,7 @@ Listing listing_of(const Grid& g, const ScreenScene& ss, int threads) {
     nbits += static_cast<std::size_t>(l.words[fi]) * static_cast<std::size_t>(r.y1 - r.y0 + 1);
   }
   // The cells of the facets listed by cell, in row order (ascending).
-  l.cells.resize(l.cells_first[ss.facets.size()]);
+  l.cells.resize(l.cells_first[ss.facet_count()]);
   std::vector<std::size_t> fill(l.cells_first.begin(), l.cells_first.end() - 1);
   for (std::size_t c = 0; c < g.cells.size(); ++c) {
     auto add = [&](int fi) {
@@ -1085,7 +1094,7 @@ void crossings_in_cell(const Grid& g, const ScreenScene& ss, const Listing& l, c
   const Cell& cell = g.at(ix, iy);
   members.clear();
   auto add = [&](int fi) {
-    const Facet& f = ss.facets[fi];
+    const Facet& f = ss.facet(fi);
     Member m{fi, f.face, solid_of(ss, fi), f.box, f.zlo, f.zhi, {Member::kNotTriangle, -1, -1}};
     if (f.id.size() == 3) std::copy(f.id.begin(), f.id.end(), m.corner.begin());
     members.push_back(m);
@@ -1106,7 +1115,7 @@ void crossings_in_cell(const Grid& g, const ScreenScene& ss, const Listing& l, c
       if (triangles && triangles_apart(m.corner.data(), n.corner.data(), stars)) continue;
       const int fa = std::min(m.fi, n.fi), fb = std::max(m.fi, n.fi);
       if (!first_common_cell(l, fa, fb, ix, iy)) continue;
-      const Facet &A = ss.facets[fa], &B = ss.facets[fb];
+      const Facet &A = ss.facet(fa), &B = ss.facet(fb);
       if (!triangles && neighbours_apart(A, B, stars)) continue;
       ++tested;
       P2 p, q;
@@ -1151,7 +1160,7 @@ void add_intersection_lines(const Grid& g, ScreenScene& ss, int threads, Stats& 
   });
   std::deque<P3>& line_ends = ss.ends.emplace_back();
   for (const Crossing& c : found) {
-    ss.curves.push_back(crossing_curve(ss.facets[c.fa], ss.facets[c.fb], c.fa, c.fb, c.p, c.q, line_ends));
+    ss.curves.push_back(crossing_curve(ss.facet(c.fa), ss.facet(c.fb), c.fa, c.fb, c.p, c.q, line_ends));
   }
   stats.count("embedded_stars", stars.count());
   stats.count("facet_pairs_tested", tested);
@@ -1191,7 +1200,7 @@ std::int64_t bucket(Grid& g, const ScreenScene& ss, int threads, Take&& take, In
         // (A cell the double box reaches only by rounding may be kept: harmless,
         // cut points count only in the cell that holds them.)
         if ((r.x0 != r.x1 || r.y0 != r.y1) && !meets_cell(*cv.s, *cv.t, corners(g, ix, iy))) continue;
-        if (cell.blocker >= 0 && curve_behind(cv, ss.facets[cell.blocker], ss.world)) continue;
+        if (cell.blocker >= 0 && curve_behind(cv, ss.facet(cell.blocker), ss.world)) continue;
         cell.curves.push_back(ci);
         kept = true;
         ++listed_here;
@@ -1589,7 +1598,7 @@ struct Cutter {
   // plane inside the facet: cut it there.
   void pierce(int ci, int fi) {
     const Curve& C = ss.curves[ci];
-    const Facet& F = ss.facets[fi];
+    const Facet& F = ss.facet(fi);
     if (!CGAL::do_overlap(C.box, F.box)) return;
     // The sides first, as filtered predicates (an end point in F's plane, often a
     // corner of it, is told in the world), the depths only for a crossing.
@@ -1648,7 +1657,7 @@ std::vector<DepthSpan> depth_spans(const ScreenScene& ss, int threads) {
       d.lo = std::min(zs.inf(), zt.inf());
       d.hi = std::max(zs.sup(), zt.sup());
       for (std::size_t k = 0; k < c.sharers.size(); ++k)
-        d.face[k] = ss.facets[static_cast<std::size_t>(c.sharers[k])].face;
+        d.face[k] = ss.brief(static_cast<std::size_t>(c.sharers[k])).face;
       d.covered = c.covered;
     }
   });
@@ -1714,7 +1723,7 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
   // A curve none of whose facets hides anything is cut where it pierces one.
   auto pierce = [&](Cutter& cutter, const Cell& cell, int ci) {
     const Curve& cv = ss.curves[ci];
-    if (std::any_of(cv.sharers.begin(), cv.sharers.end(), [&](int s) { return ss.facets[s].occluder; })) return;
+    if (std::any_of(cv.sharers.begin(), cv.sharers.end(), [&](int s) { return ss.brief(s).occluder; })) return;
     for (int fi : cell.facets) cutter.pierce(ci, fi);
     if (cell.blocker >= 0) cutter.pierce(ci, cell.blocker);
   };
@@ -1913,16 +1922,16 @@ bool decide_piece(const Grid& g, const ScreenScene& ss, int ci, const P2& a, con
   // curve's depth) can then be nearest on either side: the piece is neither
   // drawn nor a region boundary, and the rest of its cell need not be seen.
   auto hides = [&](int fi, const Cover& c) {
-    return c.left && c.right && !std::binary_search(cv.faces.begin(), cv.faces.end(), ss.facets[fi].face) &&
-           depth_against_curve(ss.facets[fi], probe) == CGAL::NEGATIVE;
+    return c.left && c.right && !std::binary_search(cv.faces.begin(), cv.faces.end(), ss.facet(fi).face) &&
+           depth_against_curve(ss.facet(fi), probe) == CGAL::NEGATIVE;
   };
   auto consider = [&](int fi) {   // true: fi hides the piece
-    if (!CGAL::do_overlap(mbox, ss.facets[fi].box)) return false;   // cheap: cannot cover m
+    if (!CGAL::do_overlap(mbox, ss.facet(fi).box)) return false;   // cheap: cannot cover m
     int own = -1;
     for (std::size_t j = 0; j < cv.sharers.size(); ++j)
       if (cv.sharers[j] == fi) own = cv.sharer_edge[j];
     Cover c;
-    if (!cover_at(ss.facets[fi], probe, c, own)) return false;
+    if (!cover_at(ss.facet(fi), probe, c, own)) return false;
     c.facet = fi;
     covers.push_back(c);
     return hides(fi, c);
@@ -1936,16 +1945,16 @@ bool decide_piece(const Grid& g, const ScreenScene& ss, int ci, const P2& a, con
   // Nearest face on each side (step 11).
   int bl = -1, br = -1;
   for (std::size_t i = 0; i < covers.size(); ++i) {
-    const Facet& f = ss.facets[covers[i].facet];
-    if (covers[i].left && (bl < 0 || before(f, ss.facets[covers[bl].facet], probe, true))) bl = static_cast<int>(i);
-    if (covers[i].right && (br < 0 || before(f, ss.facets[covers[br].facet], probe, false))) br = static_cast<int>(i);
+    const Facet& f = ss.facet(covers[i].facet);
+    if (covers[i].left && (bl < 0 || before(f, ss.facet(covers[bl].facet), probe, true))) bl = static_cast<int>(i);
+    if (covers[i].right && (br < 0 || before(f, ss.facet(covers[br].facet), probe, false))) br = static_cast<int>(i);
   }
   VisiblePiece vp;
   vp.a = a;
   vp.b = b;
   vp.curve = ci;
-  vp.left = bl < 0 ? -1 : ss.facets[covers[bl].facet].face;
-  vp.right = br < 0 ? -1 : ss.facets[covers[br].facet].face;
+  vp.left = bl < 0 ? -1 : ss.facet(covers[bl].facet).face;
+  vp.right = br < 0 ? -1 : ss.facet(covers[br].facet).face;
   if (vp.left != vp.right) {
     auto responsible = [&](int i) {
       return i >= 0 && std::find(cv.sharers.begin(), cv.sharers.end(), covers[i].facet) != cv.sharers.end();
@@ -1959,18 +1968,18 @@ bool decide_piece(const Grid& g, const ScreenScene& ss, int ci, const P2& a, con
   if (!cv.faces.empty()) {
     vp.visible = true;
     for (std::size_t i = 0; i < covers.size() && vp.visible; ++i) {
-      const int face = ss.facets[covers[i].facet].face;
+      const int face = ss.facet(covers[i].facet).face;
       if (std::binary_search(cv.faces.begin(), cv.faces.end(), face)) continue;
-      auto c = depth_against_curve(ss.facets[covers[i].facet], probe);
+      auto c = depth_against_curve(ss.facet(covers[i].facet), probe);
       if (!(c == CGAL::NEGATIVE || (c == CGAL::ZERO && face < cv.order_face))) continue;
       bool both = covers[i].left && covers[i].right;
       // Two facets of one (fanned) polygon covering the two sides hide it only
       // where they meet at m: the same depth there. A facet of that polygon
       // further back, a fold's other layer, does not continue this one.
       for (std::size_t j = 0; j < covers.size() && !both; ++j)
-        if (j != i && ss.facets[covers[j].facet].face == face &&
+        if (j != i && ss.facet(covers[j].facet).face == face &&
             (covers[i].left || covers[j].left) && (covers[i].right || covers[j].right))
-          both = depth_order(ss.facets[covers[i].facet], ss.facets[covers[j].facet], probe) == CGAL::ZERO;
+          both = depth_order(ss.facet(covers[i].facet), ss.facet(covers[j].facet), probe) == CGAL::ZERO;
       if (both) vp.visible = false;
     }
   }

@@ -34,7 +34,7 @@ bool curve_on_line(const P3& p, const P3& q, const Probe& m) {
 // Facet f is one of those whose edge the curve is (so the curve is in its plane).
 bool holds_curve(const Facet& f, const Probe& m) {
   for (int s : m.curve->sharers)
-    if (s >= 0 && &(*m.facets)[static_cast<std::size_t>(s)] == &f) return true;
+    if (s >= 0 && m.screen->made_facet(static_cast<std::size_t>(s)) == &f) return true;
   return false;
 }
 
@@ -66,7 +66,7 @@ Probe probe_of(const ScreenScene& ss, const Curve& cv) {
   probe.s = cv.s;
   probe.t = cv.t;
   probe.world = ss.world;
-  probe.facets = &ss.facets;
+  probe.screen = &ss;
   probe.orthographic = ss.exact && !ss.exact->perspective ? ss.exact.get() : nullptr;
   {
     CGAL::Protect_FPU_rounding<true> upward;

@@ -19,7 +19,7 @@ struct Probe {
   const Curve* curve;         // end points s, t: direction t - s
   const P3 *s, *t;
   const std::vector<Vec3>* world;   // the input's vertices (the curve's end point ids index them)
-  const std::vector<Facet>* facets; // the screen scene's (the curve's sharers index them)
+  const ScreenScene* screen;        // whose facets the curve's sharers are
   const ExactSource* orthographic = nullptr;   // the scene's, in an orthographic view (else null)
   Interval idx, idy;
   bool x_moves = true;        // t.x != s.x (else the curve is vertical)

@@ -98,14 +98,22 @@ class DepthPlane {
   std::uint32_t facet_ = 0;
 };
 
+// What is known of every facet, whether its whole Facet is made or not (a
+// lines-only drawing makes those near its lines only: ScreenScene::facet).
+// 40 bytes.
+struct FacetBrief {
+  int face = -1;                 // input face index
+  Facing facing = Facing::EdgeOn;
+  bool occluder = false;         // hides and labels: not edge-on, not culled
+  bool projected = false;        // has a screen polygon (not all behind the near plane)
+  CGAL::Bbox_2 box;              // contains the exact projection
+};
+
 // (The small fields first, packed: 144 bytes, the depth plane held apart (a
 // lines-only drawing makes few); a million facets are common. Boxes and depth
 // ranges stay doubles: an orthographic view does not translate, and a float's
 // step near a georeferenced 5e6 is 0.5.)
-struct Facet {
-  int face = -1;                 // input face index
-  Facing facing = Facing::EdgeOn;
-  bool occluder = false;         // hides and labels: not edge-on, not culled
+struct Facet : FacetBrief {
   bool planar = true;            // false: a fan piece of a non-planar polygon
   // Bit k: edge v[k] -> v[k+1] lies on a diagonal inside the polygon (a
   // triangulation's or a fan's edge, EdgeRole::Internal; such facets are
@@ -123,7 +131,6 @@ struct Facet {
                                  // some predicates without arithmetic
   const DepthPlane* plane = nullptr;   // depth(x, y) = a x + b y + c (not edge-on), kept in
                                        // ScreenScene::planes; null until made
-  CGAL::Bbox_2 box;              // contains the exact projection
   FT depth_at(const P2& p) const { return plane->number(0) * p.x() + plane->number(1) * p.y() + plane->number(2); }
   // Whether canonical vertex v (not -1) is a corner: then it lies in the plane.
   bool has_vertex(long v) const { return v >= 0 && std::find(id.begin(), id.end(), v) != id.end(); }
@@ -158,7 +165,28 @@ struct ScreenScene {
   // Where the images are left for later (a lines-only drawing: make_images makes
   // those it needs), each one's intervals, by place; else empty.
   std::vector<ImageBounds> image_bounds;
+  // The facets, by index (a curve's sharers, a cell's list): each one's Facet
+  // (facet()), or, where a lines-only drawing keeps only briefs (lean(): most
+  // facets lie far from its lines), those make_facets made, at made_at's places.
+  // brief() reads what every facet has.
   std::vector<Facet> facets;
+  std::vector<FacetBrief> briefs;       // lean: every facet's
+  std::vector<std::uint32_t> made_at;   // lean: facet fi's place in `facets`, or kNotMade
+  static constexpr std::uint32_t kNotMade = UINT32_MAX;
+  bool lean() const { return !briefs.empty(); }
+  std::size_t facet_count() const { return lean() ? briefs.size() : facets.size(); }
+  const FacetBrief& brief(std::size_t fi) const { return lean() ? briefs[fi] : facets[fi]; }
+  const Facet& facet(std::size_t fi) const { return lean() ? facets[made_place(fi)] : facets[fi]; }
+  Facet& facet(std::size_t fi) { return lean() ? facets[made_place(fi)] : facets[fi]; }
+  // Facet fi where it is made, else null.
+  const Facet* made_facet(std::size_t fi) const {
+    if (!lean()) return &facets[fi];
+    return made_at.empty() || made_at[fi] == kNotMade ? nullptr : &facets[made_at[fi]];
+  }
+  void set_occluder(std::size_t fi, bool occluder) {
+    if (lean()) briefs[fi].occluder = occluder;
+    if (Facet* f = const_cast<Facet*>(made_facet(fi))) f->occluder = occluder;
+  }
   // The facets' depth planes, in chunks that never move (Facet::plane points
   // into them): every facet's, or where a lines-only drawing leaves them for
   // later, those make_depth_planes makes.
@@ -195,6 +223,14 @@ struct ScreenScene {
   Interval x_of(const P3& p) const { const ImageBounds* b = kept_bounds(p); return b ? b->x : approx_of(p.x); }
   Interval y_of(const P3& p) const { const ImageBounds* b = kept_bounds(p); return b ? b->y : approx_of(p.y); }
   Interval z_of(const P3& p) const { const ImageBounds* b = kept_bounds(p); return b ? b->z : approx_of(p.z); }
+
+ private:
+  std::uint32_t made_place(std::size_t fi) const {
+    const std::uint32_t at = made_at.empty() ? kNotMade : made_at[fi];
+    if (at == kNotMade) not_made();
+    return at;
+  }
+  [[noreturn]] static void not_made();
 };
 
 // Facet fi's solid (ScreenScene::solid), or -1; and whether every occluder is in
@@ -202,8 +238,8 @@ struct ScreenScene {
 inline int solid_of(const ScreenScene& ss, int fi) { return ss.solid.empty() ? -1 : ss.solid[static_cast<std::size_t>(fi)]; }
 inline bool occluders_all_in_solids(const ScreenScene& ss) {
   if (ss.solid.empty()) return false;
-  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi)
-    if (ss.facets[fi].occluder && ss.solid[fi] < 0) return false;
+  for (std::size_t fi = 0; fi < ss.facet_count(); ++fi)
+    if (ss.brief(fi).occluder && ss.solid[fi] < 0) return false;
   return true;
 }
 // Whether every occluder is in one solid (a terrain alone): then no pair of
@@ -211,8 +247,8 @@ inline bool occluders_all_in_solids(const ScreenScene& ss) {
 inline bool occluders_in_one_solid(const ScreenScene& ss) {
   if (ss.solid.empty()) return false;
   int one = -1;
-  for (std::size_t fi = 0; fi < ss.facets.size(); ++fi) {
-    if (!ss.facets[fi].occluder) continue;
+  for (std::size_t fi = 0; fi < ss.facet_count(); ++fi) {
+    if (!ss.brief(fi).occluder) continue;
     if (ss.solid[fi] < 0 || (one >= 0 && ss.solid[fi] != one)) return false;
     one = ss.solid[fi];
   }
@@ -271,6 +307,15 @@ void make_images(ScreenScene& ss, const std::vector<std::uint32_t>& places, int 
 // Makes the images of facet fi's corners for every facet `which` marks (every
 // facet where `which` is empty).
 void make_corner_images(ScreenScene& ss, const std::vector<char>& which, int threads);
+
+// In a lean scene (ScreenScene::lean), makes the Facets of the facets `which`
+// marks (every facet where `which` is empty) that are not made yet, from their
+// briefs and world facets; in facet order. Else nothing.
+void make_facets(ScreenScene& ss, const std::vector<char>& which, int threads);
+// Facet fi's corners (its screen polygon's), whether its Facet is made or not:
+// a lean scene's facets keep all their corners (the near plane cuts none), the
+// images of their world facet's vertices.
+SmallVec<const P3*, 4> corners_of(const ScreenScene& ss, std::size_t fi);
 
 // Makes the latent curves whose flag in `wanted` is set, appended to ss.curves in
 // latent order (as make_screen_scene would have made them); no curve is latent

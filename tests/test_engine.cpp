@@ -272,7 +272,8 @@ TEST(HiddenLines, CheckerRefusesEachMutation) {
 // cells_for_drawn_lines, fewer than the grid's), and its segments are still the
 // whole map's, on every thread count: in views where hills hide valleys, along a
 // grazing direction, and from close by in perspective (near faces cover many
-// cells and block them), at two grid sizes.
+// cells and block them), at two grid sizes. Where the near plane cuts nothing, it
+// makes whole only the faces those cells need (stat facets_made).
 namespace {
 // A height field over the unit square, n x n cells of two triangles.
 vismap::Scene hills(int n) {
@@ -310,6 +311,10 @@ TEST(LinesOnly, OneSurfaceIsLookedAtOnlyNearItsDrawnLines) {
       const vismap::VisibilityMap m = vismap::visibility_franklin(scene, view, lines);
       EXPECT_GT(m.stats.counted("cells_for_drawn_lines"), 0) << what;
       EXPECT_LT(m.stats.counted("cells_for_drawn_lines"), m.stats.counted("grid_cells")) << what;
+      // Nothing cut at the near plane: faces made only where needed; obliquely,
+      // those far from the lines stay briefs (grazing, the lines reach everywhere).
+      if (k < 3) EXPECT_GT(m.stats.counted("facets_made"), 0) << what;
+      if (k == 0) EXPECT_LT(m.stats.counted("facets_made"), m.stats.counted("facets")) << what;
       EXPECT_GT(m.segments.size(), 20u) << what;
       const std::string drawn = segments_of(map_json(scene, view, lines));
       EXPECT_EQ(drawn, segments_of(map_json(scene, view, whole))) << what << ": the lines alone differ from the whole map's";
