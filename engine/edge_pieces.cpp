@@ -557,12 +557,27 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
   out.pieces.resize(next.back());
   out.rank.resize(next.back());
   parallel_for(static_cast<int>(nchunks), threads, [&](int c) {
-    const auto [from, to] = chunk_of(static_cast<std::size_t>(c));
+    const std::pair<std::size_t, std::size_t> range = chunk_of(static_cast<std::size_t>(c));
+    const std::size_t from = range.first, to = range.second;   // (named: the lambda below reads them)
+    // (Each group's place is taken kAhead groups before its piece is written
+    // there, and fetched meanwhile: the places scatter over all the pieces, a
+    // cache miss each. The places are taken in the same order.)
+    constexpr std::size_t kAhead = 16;
+    std::array<std::uint32_t, kAhead> place{};   // group g's at g % kAhead
+    auto take_place = [&](std::size_t g) {
+      if (g >= to || run_at[g] != alone) return;
+      const std::uint32_t at = place[g % kAhead] = take(group_edge(g).facet);
+      __builtin_prefetch(&out.pieces[at], 1);
+      __builtin_prefetch(&out.rank[at], 1);
+    };
+    for (std::size_t g = from; g < from + kAhead; ++g) take_place(g);
     for (std::size_t g = from; g < to; ++g) {
-      if (run_at[g] != alone) continue;
-      const std::uint32_t at = take(group_edge(g).facet);
-      out.pieces[at] = alone_piece(g);
-      out.rank[at] = Rank{cells_at[g], 0};
+      if (run_at[g] == alone) {
+        const std::uint32_t at = place[g % kAhead];
+        out.pieces[at] = alone_piece(g);
+        out.rank[at] = Rank{cells_at[g], 0};
+      }
+      take_place(g + kAhead);
     }
     Found& mine = runs[static_cast<std::size_t>(c)];
     for (std::size_t i = 0; i < mine.pieces.size(); ++i) {
