@@ -183,9 +183,14 @@ struct ScreenScene {
     if (!lean()) return &facets[fi];
     return made_at.empty() || made_at[fi] == kNotMade ? nullptr : &facets[made_at[fi]];
   }
+  // (A lean scene's made facets keep their brief's flag too.)
   void set_occluder(std::size_t fi, bool occluder) {
-    if (lean()) briefs[fi].occluder = occluder;
-    if (Facet* f = const_cast<Facet*>(made_facet(fi))) f->occluder = occluder;
+    if (!lean()) {
+      facets[fi].occluder = occluder;
+      return;
+    }
+    briefs[fi].occluder = occluder;
+    if (!made_at.empty() && made_at[fi] != kNotMade) facets[made_at[fi]].occluder = occluder;
   }
   // The facets' depth planes, in chunks that never move (Facet::plane points
   // into them): every facet's, or where a lines-only drawing leaves them for
@@ -310,7 +315,8 @@ void make_corner_images(ScreenScene& ss, const std::vector<char>& which, int thr
 
 // In a lean scene (ScreenScene::lean), makes the Facets of the facets `which`
 // marks (every facet where `which` is empty) that are not made yet, from their
-// briefs and world facets; in facet order. Else nothing.
+// briefs and world facets, as make_screen_scene would have; in facet order
+// (those made before may move). Else nothing.
 void make_facets(ScreenScene& ss, const std::vector<char>& which, int threads);
 // Facet fi's corners (its screen polygon's), whether its Facet is made or not:
 // a lean scene's facets keep all their corners (the near plane cuts none), the
