@@ -866,7 +866,6 @@ NearCut near_cut(const ScreenScene& ss, const CurveMaker& M, const std::vector<s
 void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& view, const std::vector<std::int8_t>& zsign,
                            const ClosedComponents& cc, int threads, Stats& stats) {
   const std::size_t n = ss.facet_count();
-  ss.solid.assign(n, -1);
   // (No closed component, an open surface: nothing to cull, nor any per-facet
   // box or cap list to make; on a 10^6-triangle terrain those were ~60 MB.)
   if (std::all_of(cc.side.begin(), cc.side.end(), [](std::int8_t s) { return s == 0; })) {
@@ -921,13 +920,12 @@ void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& vie
     });
     cap_side = cap_sides(cc, cut.segments, candidate, facet_box, point, threads);
   }
-  // What is culled, counted per chunk (back, front). A closed component taken as such
-  // does not meet itself (closed_components): a solid, whose facets never pierce each other.
+  // What is culled, counted per chunk (back, front). (Such a component is also a
+  // solid, whose facets never pierce each other: solid_labels.)
   std::vector<ChunkCounts> culled(static_cast<std::size_t>(chunk_count(nf, 16384)));
   parallel_chunks(nf, 16384, threads, [&](int k, Chunk r) {
     auto& [back, front] = culled[static_cast<std::size_t>(k)];
     for (auto fi = static_cast<std::size_t>(r.begin); fi < static_cast<std::size_t>(r.end); ++fi) {
-      if (cc.side[fi] != 0) ss.solid[fi] = cc.component[fi];
       if (!ss.brief(fi).occluder || cc.side[fi] == 0) continue;
       if (seen_from_outside(fi)) {
         if (cap_side[fi] <= 0) continue;
@@ -945,18 +943,35 @@ void cull_by_closed_solids(ScreenScene& ss, const CurveMaker& M, const View& vie
   stats.count("near_plane_caps", static_cast<std::int64_t>(caps.size()));
 }
 
-// Open surfaces that are graphs over a coordinate plane meet themselves nowhere
-// (`label`: engine/height_fields.h): their facets are marked as a solid's are
-// (ScreenScene::solid), and the piercing searches pass over their pairs.
-void mark_height_fields(ScreenScene& ss, const std::vector<int>& label, Stats& stats) {
-  if (ss.solid.empty()) ss.solid.assign(ss.facet_count(), -1);
-  std::int64_t marked = 0;
-  for (std::size_t fi = 0; fi < label.size(); ++fi)
-    if (label[fi] >= 0) {
-      ss.solid[fi] = label[fi];
-      ++marked;
-    }
-  stats.count("height_field_facets", marked);
+// Per facet: its solid (ScreenScene::solid), where it is known not to meet
+// itself: a closed component that closed_components took as such (side != 0),
+// or an open surface that is a graph over a coordinate plane (`height_field`:
+// engine/height_fields.h), whose label wins. Else -1. Camera-free.
+std::vector<int> solid_labels(const ClosedComponents& cc, const std::vector<int>& height_field, std::size_t n) {
+  std::vector<int> solid(n, -1);
+  for (std::size_t fi = 0; fi < n; ++fi) {
+    if (fi < cc.side.size() && cc.side[fi] != 0) solid[fi] = cc.component[fi];
+    if (fi < height_field.size() && height_field[fi] >= 0) solid[fi] = height_field[fi];
+  }
+  return solid;
+}
+
+// A facet's box and depth range (zlo, zhi), from its corners' intervals.
+void bound(const ScreenScene& ss, Facet& f) {
+  f.box = box_at(ss, f.v[0]);
+  f.zlo = HUGE_VAL;
+  f.zhi = -HUGE_VAL;
+  for (const auto& p : f.v) {
+    f.box += box_at(ss, p);
+    const Interval z = ss.z_of(p);
+    f.zlo = std::min(f.zlo, z.inf());
+    f.zhi = std::max(f.zhi, z.sup());
+  }
+}
+
+// Whether every facet is in one solid (as labelled by solid_labels).
+bool all_in_one_solid(const std::vector<int>& solid) {
+  return !solid.empty() && solid[0] >= 0 && std::all_of(solid.begin(), solid.end(), [&](int s) { return s == solid[0]; });
 }
 
 // Parallel to the screen: every vertex at one depth, known exactly from its
@@ -1015,22 +1030,6 @@ std::size_t make_latent_now_where_most_are_drawn(std::vector<CurveMaker::Verdict
   for (V& v : verdict)
     if (v == V::Latent) v = V::Drawn;   // (made as make() makes any piece: drawn or not, by its kind)
   return static_cast<std::size_t>(drawn + latent);
-}
-
-// Whether all n facets will be marked as in one solid (ScreenScene::solid: a
-// closed component that cull_by_closed_solids takes as such, or one height
-// field, which mark_height_fields marks over it), before either is run.
-bool all_in_one_solid(const ClosedComponents& cc, const std::vector<int>& height_field, std::size_t n) {
-  if (cc.side.size() != n) return false;
-  int one = -1;
-  for (std::size_t fi = 0; fi < n; ++fi) {
-    const int solid = fi < height_field.size() && height_field[fi] >= 0 ? height_field[fi]
-                      : cc.side[fi] != 0                                ? cc.component[fi]
-                                                                        : -1;
-    if (solid < 0 || (one >= 0 && solid != one)) return false;
-    one = solid;
-  }
-  return n > 0;
 }
 }  // namespace
 
@@ -1200,15 +1199,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
         });
     f.facing = s > 0 ? Facing::Front : s < 0 ? Facing::Back : Facing::EdgeOn;
     if (f.facing == Facing::EdgeOn) { ++edge_on; return; }
-    f.box = box_at(ss, f.v[0]);
-    f.zlo = HUGE_VAL;
-    f.zhi = -HUGE_VAL;
-    for (const auto& p : f.v) {
-      f.box += box_at(ss, p);
-      const Interval z = ss.z_of(p);
-      f.zlo = std::min(f.zlo, z.inf());
-      f.zhi = std::max(f.zhi, z.sup());
-    }
+    bound(ss, f);
     f.occluder = true;
     // Its plane's spanning corners (the crease test reads them too), and its
     // depth plane, unless a lines-only drawing makes it later for the facets
@@ -1223,7 +1214,8 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   // facet in one solid, nothing cut at the near plane) keeps each facet's brief
   // alone; make_facets makes the Facets of those near its lines (the 10^6-
   // triangle terrain: 7 % of them; 104 bytes fewer for each of the others).
-  const bool lean = later && cull && all_in_one_solid(closed, height_field, wf.facets.size());
+  if (cull) ss.solid = solid_labels(closed, height_field, wf.facets.size());   // (camera-free: known now)
+  const bool lean = later && cull && all_in_one_solid(ss.solid);
   // (Made in their places: a Facet holds no kernel number, so default-made on
   // one thread it is nothing the threads share.)
   if (lean) ss.briefs.resize(static_cast<std::size_t>(nf));
@@ -1255,7 +1247,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
 
   if (cull) {
     cull_by_closed_solids(ss, M, view, zsign, closed, threads, stats);
-    mark_height_fields(ss, height_field, stats);
+    stats.count("height_field_facets", std::count_if(height_field.begin(), height_field.end(), [](int l) { return l >= 0; }));
   }
 
   M.look.resize(ss.facet_count());
@@ -1443,14 +1435,7 @@ void make_facets(ScreenScene& ss, const std::vector<char>& which, int threads) {
         f.id.push_back(static_cast<VertexId>(w.v[k]));
         if (w.role[k] == EdgeRole::Internal && f.v.size() <= 8) f.diagonals |= static_cast<std::uint8_t>(1u << (f.v.size() - 1));
       }
-      if (f.facing == Facing::EdgeOn) continue;
-      f.zlo = HUGE_VAL;
-      f.zhi = -HUGE_VAL;
-      for (const auto& p : f.v) {
-        const Interval z = ss.z_of(p);
-        f.zlo = std::min(f.zlo, z.inf());
-        f.zhi = std::max(f.zhi, z.sup());
-      }
+      if (f.facing != Facing::EdgeOn) bound(ss, f);   // (its box again: the brief's)
     }
   });
 }
