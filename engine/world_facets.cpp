@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstring>
 #include <exception>
+#include <stdexcept>
 
 #include "engine/holed_faces.h"
 #include "engine/input_polygon.h"
@@ -94,7 +95,8 @@ std::vector<std::uint32_t> canonical_vertex_ids(const Scene& scene, int threads)
   // Open addressing over a power-of-two table (no node per vertex), filled side
   // by side: a slot, once taken, keeps one point's coordinates, and the least
   // index among its equal vertices (an atomic minimum), as one pass in index
-  // order would leave it; then each vertex reads its point's slot.
+  // order would leave it; each vertex notes its point's slot (in its place in
+  // the answer), then reads what the slot holds when every vertex is in.
   auto bits = [](double d) {
     d += 0.0;   // -0 == +0
     std::uint64_t b;
@@ -108,6 +110,8 @@ std::vector<std::uint32_t> canonical_vertex_ids(const Scene& scene, int threads)
     return h ^ (h >> 32);
   };
   const std::size_t n = scene.vertices.size();
+  // (Vertex ids, and the slots of a table of at most 2^32, are 32-bit.)
+  if (n >= std::size_t{1} << 31) throw std::invalid_argument("the scene has 2^31 vertices or more (vertex ids are 32-bit)");
   std::size_t cap = 16;
   while (cap < 2 * n) cap *= 2;
   constexpr std::uint32_t empty = 0xffffffffu;
@@ -116,10 +120,12 @@ std::vector<std::uint32_t> canonical_vertex_ids(const Scene& scene, int threads)
     const Vec3& q = scene.vertices[j];
     return p.x == q.x && p.y == q.y && p.z == q.z;
   };
+  std::vector<std::uint32_t> canon(n);   // (first each vertex's slot)
   parallel_chunks(static_cast<int>(n), 16384, threads, [&](int, Chunk r) {
     for (auto i = static_cast<std::uint32_t>(r.begin); i < static_cast<std::uint32_t>(r.end); ++i) {
       const Vec3& p = scene.vertices[i];
       for (std::size_t k = hash(p) & (cap - 1);; k = (k + 1) & (cap - 1)) {
+        canon[i] = static_cast<std::uint32_t>(k);
         std::uint32_t held = empty;
         if (shared_compare_exchange(table[k], held, i, threads)) break;   // (taken by i)
         if (!same(p, held)) continue;
@@ -128,19 +134,27 @@ std::vector<std::uint32_t> canonical_vertex_ids(const Scene& scene, int threads)
       }
     }
   });
-  std::vector<std::uint32_t> canon(n);
   parallel_chunks(static_cast<int>(n), 16384, threads, [&](int, Chunk r) {
-    for (auto i = static_cast<std::uint32_t>(r.begin); i < static_cast<std::uint32_t>(r.end); ++i) {
-      const Vec3& p = scene.vertices[i];
-      std::size_t k = hash(p) & (cap - 1);
-      while (!same(p, table[k])) k = (k + 1) & (cap - 1);
-      canon[i] = table[k];
-    }
+    for (auto i = static_cast<std::size_t>(r.begin); i < static_cast<std::size_t>(r.end); ++i) canon[i] = table[canon[i]];
   });
   return canon;
 }
 
 namespace {
+
+// A face of three distinct corners not in a line (most faces of a mesh) made
+// its facet straight away, as the general path below would make it; false
+// (nothing made) for any other face.
+bool is_plain_triangle(const Scene& scene, const std::vector<std::uint32_t>& canon, const IndexRing& ring,
+                       int face, WorldFacets& out) {
+  if (ring.size() != 3) return false;
+  const std::uint32_t a = canon[ring[0]], b = canon[ring[1]], c = canon[ring[2]];
+  if (a == b || b == c || c == a) return false;   // (canonical: equal ids for equal points only)
+  const Vec3 &pa = scene.vertices[a], &pb = scene.vertices[b], &pc = scene.vertices[c];
+  if (CGAL::collinear(Q3(pa.x, pa.y, pa.z), Q3(pb.x, pb.y, pb.z), Q3(pc.x, pc.y, pc.z))) return false;
+  out.facets.push_back(WorldFacet{face, true, false, {a, b, c}, {EdgeRole::Boundary, EdgeRole::Boundary, EdgeRole::Boundary}});
+  return true;
+}
 
 // Faces [r.begin, r.end) into `out`, in order (with their counts).
 void facets_of_faces(const Scene& scene, const std::vector<std::uint32_t>& canon, Chunk r, WorldFacets& out) {
@@ -151,6 +165,7 @@ void facets_of_faces(const Scene& scene, const std::vector<std::uint32_t>& canon
       facets_of_holed_face(scene, canon, f, out);
       continue;
     }
+    if (is_plain_triangle(scene, canon, scene.faces[f], static_cast<int>(f), out)) continue;
     distinct_corners(scene, canon, scene.faces[f], ids, p);
     std::size_t i1, i2;
     if (!find_plane(p, i1, i2)) { ++out.degenerate; continue; }
