@@ -247,15 +247,16 @@ bool is_crease(const Spanning& f, const Spanning& g, double c) {
 // doubles, exact on binary floats (no gcd). Zero for the faces seen edge-on,
 // which an axis view of a CAD part or a building is full of and which no
 // filter can settle. (The screen's 2^k changes no sign.)
-int world_area_sign(const View& view, const Scene& scene, const Facet& f) {
+// (The polygon's n corners are input vertices id(k), none cut at a near plane.)
+template <class Id>
+int world_area_sign(const View& view, const Scene& scene, std::size_t n, Id&& id) {
   using M = CGAL::Mpzf;
   const auto &r = view.m[0], &u = view.m[1];
   const M nx = M(r[1]) * M(u[2]) - M(r[2]) * M(u[1]), ny = M(r[2]) * M(u[0]) - M(r[0]) * M(u[2]),
           nz = M(r[0]) * M(u[1]) - M(r[1]) * M(u[0]);
   M ax(0.0), ay(0.0), az(0.0);
-  const std::size_t n = f.id.size();
   for (std::size_t k = 0; k < n; ++k) {
-    const Vec3 &p = scene.vertices[static_cast<std::size_t>(f.id[k])], &q = scene.vertices[static_cast<std::size_t>(f.id[(k + 1) % n])];
+    const Vec3 &p = scene.vertices[static_cast<std::size_t>(id(k))], &q = scene.vertices[static_cast<std::size_t>(id((k + 1) % n))];
     ax = ax + (M(p.y) * M(q.z) - M(p.z) * M(q.y));
     ay = ay + (M(p.z) * M(q.x) - M(p.x) * M(q.z));
     az = az + (M(p.x) * M(q.y) - M(p.y) * M(q.x));
@@ -976,12 +977,18 @@ bool all_in_one_solid(const std::vector<int>& solid) {
 
 // Parallel to the screen: every vertex at one depth, known exactly from its
 // interval. Common in views along an axis.
+template <class Corner>
+bool parallel_to_screen(const ScreenScene& ss, std::size_t n, Corner&& corner) {
+  const Interval z0 = ss.z_of(corner(0));
+  if (!z0.is_point()) return false;
+  for (std::size_t k = 1; k < n; ++k) {
+    const Interval z = ss.z_of(corner(k));
+    if (z.inf() != z0.inf() || z.sup() != z0.sup()) return false;
+  }
+  return true;
+}
 bool parallel_to_screen(const ScreenScene& ss, const Facet& f) {
-  const Interval z0 = ss.z_of(f.v[0]);
-  return z0.is_point() && std::all_of(f.v.begin(), f.v.end(), [&](const P3& p) {
-           const Interval z = ss.z_of(p);
-           return z.inf() == z0.inf() && z.sup() == z0.sup();
-         });
+  return parallel_to_screen(ss, f.v.size(), [&](std::size_t k) -> const P3& { return f.v[k]; });
 }
 
 // Facet fi's depth plane (f is not edge-on; `parallel`: parallel_to_screen(f);
@@ -1145,6 +1152,37 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   const int nf = static_cast<int>(wf.facets.size());
   const int facets_per_chunk = 512;
   std::vector<ChunkCounts> culled(static_cast<std::size_t>(chunk_count(nf, facets_per_chunk)));
+  // Facing: the sign of the projected area of a screen polygon of n corners,
+  // corner(k) its images (a near-plane cut's point, or a vertex's: a leaf, its
+  // intervals first, its exact value where those cannot tell) and id(k) their
+  // input vertices (-1 for a cut point).
+  auto facing_of = [&](std::size_t n, auto&& corner, auto&& id) {
+    const CGAL::Sign s = filtered_sign(
+        [&] {
+          Interval area2 = 0;
+          for (std::size_t k = 0; k < n; ++k) {
+            const P3 &p = corner(k), &q = corner((k + 1) % n);
+            area2 += ss.x_of(p) * ss.y_of(q) - ss.x_of(q) * ss.y_of(p);
+          }
+          return area2;
+        },
+        [&]() -> mpq_class {
+          if (!view.perspective) return world_area_sign(view, scene, n, id);
+          // (Corners whose images are left for later: made for the question.)
+          std::vector<P3> made;
+          if (later)
+            for (std::size_t k = 0; k < n; ++k)
+              made.push_back(M.make_image(static_cast<std::uint32_t>(&corner(k) - ss.images.data())));
+          auto at = [&](std::size_t k) -> const P3& { return later ? made[k] : corner(k); };
+          mpq_class area2 = 0;
+          for (std::size_t k = 0; k < n; ++k) {
+            const P3 &p = at(k), &q = at((k + 1) % n);
+            area2 += to_mpq(p.x) * to_mpq(q.y) - to_mpq(q.x) * to_mpq(p.y);
+          }
+          return area2;
+        });
+    return s > 0 ? Facing::Front : s < 0 ? Facing::Back : Facing::EdgeOn;
+  };
   auto project_facet = [&](std::size_t fi, Facet& f, std::int64_t& outside, std::int64_t& edge_on,
                            std::vector<DepthPlane>& planes) {
     const WorldFacet& w = wf.facets[fi];
@@ -1171,33 +1209,8 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     }
     if (f.v.size() < 3) { f.v.clear(); f.id.clear(); f.diagonals = 0; ++outside; return; }
     f.projected = true;
-    // Facing: the sign of the projected area (vertex coordinates are leaves:
-    // intervals first, their exact values where those cannot tell).
-    const std::size_t nv = f.v.size();
-    const CGAL::Sign s = filtered_sign(
-        [&] {
-          Interval area2 = 0;
-          for (std::size_t k = 0; k < nv; ++k) {
-            const P3 &p = f.v[k], &q = f.v[(k + 1) % nv];
-            area2 += ss.x_of(p) * ss.y_of(q) - ss.x_of(q) * ss.y_of(p);
-          }
-          return area2;
-        },
-        [&]() -> mpq_class {
-          if (!view.perspective) return world_area_sign(view, scene, f);
-          // (Corners whose images are left for later: made for the question.)
-          std::vector<P3> made;
-          if (later)
-            for (const P3& p : f.v) made.push_back(M.make_image(static_cast<std::uint32_t>(&p - ss.images.data())));
-          auto corner = [&](std::size_t k) -> const P3& { return later ? made[k] : f.v[k]; };
-          mpq_class area2 = 0;
-          for (std::size_t k = 0; k < nv; ++k) {
-            const P3 &p = corner(k), &q = corner((k + 1) % nv);
-            area2 += to_mpq(p.x) * to_mpq(q.y) - to_mpq(q.x) * to_mpq(p.y);
-          }
-          return area2;
-        });
-    f.facing = s > 0 ? Facing::Front : s < 0 ? Facing::Back : Facing::EdgeOn;
+    f.facing = facing_of(
+        f.v.size(), [&](std::size_t k) -> const P3& { return f.v[k]; }, [&](std::size_t k) { return f.id[k]; });
     if (f.facing == Facing::EdgeOn) { ++edge_on; return; }
     bound(ss, f);
     f.occluder = true;
@@ -1207,6 +1220,22 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     const bool parallel = parallel_to_screen(ss, f);
     if (!parallel) exact->spanning[fi] = spanning_ids(scene, w);
     if (!latent) make_depth_plane(f, *exact, static_cast<std::uint32_t>(fi), parallel, planes);
+  };
+  // What project_facet gives a facet's brief, for a lean scene's (every corner
+  // in front of the near plane: its polygon is its world facet's), read from
+  // its corners' kept intervals with no Facet made.
+  auto brief_facet = [&](std::size_t fi, FacetBrief& b, std::int64_t& edge_on) {
+    const WorldFacet& w = wf.facets[fi];
+    const std::size_t n = w.v.size();
+    auto corner = [&](std::size_t k) -> const P3& { return image(w.v[k]); };
+    b.face = w.face;
+    b.projected = true;
+    b.facing = facing_of(n, corner, [&](std::size_t k) { return w.v[k]; });
+    if (b.facing == Facing::EdgeOn) { ++edge_on; return; }
+    b.box = box_at(ss, corner(0));
+    for (std::size_t k = 1; k < n; ++k) b.box += box_at(ss, corner(k));
+    b.occluder = true;
+    if (!parallel_to_screen(ss, n, corner)) exact->spanning[fi] = spanning_ids(scene, w);
   };
   // (A chunk's planes in a vector of their own, its room made as it starts.)
   ss.planes.resize(culled.size());
@@ -1236,9 +1265,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
         project_facet(fi, ss.facets[fi], outside, edge_on, planes);
         continue;
       }
-      Facet f;
-      project_facet(fi, f, outside, edge_on, planes);
-      ss.briefs[fi] = f;
+      brief_facet(fi, ss.briefs[fi], edge_on);
     }
   });
   const auto [outside, edge_on] = summed(culled);
