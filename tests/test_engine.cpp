@@ -313,8 +313,12 @@ TEST(LinesOnly, OneSurfaceIsLookedAtOnlyNearItsDrawnLines) {
       EXPECT_LT(m.stats.counted("cells_for_drawn_lines"), m.stats.counted("grid_cells")) << what;
       // Nothing cut at the near plane: faces made only where needed; obliquely,
       // those far from the lines stay briefs (grazing, the lines reach everywhere).
-      if (k < 3) EXPECT_GT(m.stats.counted("facets_made"), 0) << what;
-      if (k == 0) EXPECT_LT(m.stats.counted("facets_made"), m.stats.counted("facets")) << what;
+      if (k < 3) {
+        EXPECT_GT(m.stats.counted("facets_made"), 0) << what;
+      }
+      if (k == 0) {
+        EXPECT_LT(m.stats.counted("facets_made"), m.stats.counted("facets")) << what;
+      }
       EXPECT_GT(m.segments.size(), 20u) << what;
       const std::string drawn = segments_of(map_json(scene, view, lines));
       EXPECT_EQ(drawn, segments_of(map_json(scene, view, whole))) << what << ": the lines alone differ from the whole map's";
