@@ -550,6 +550,7 @@ struct CurveMaker {
   Spanning spanning(int facet) const;
   bool drawn_of(const SmallInts& faces, EdgeKind kind) const { return !faces.empty() && (kind != EdgeKind::Smooth || smooth); }
   bool covered(const WorldPiece& wp) const;
+  bool seen_with_area(const WorldPiece& wp) const;
 };
 
 // Whether some facet sharing the piece hides or labels: else every one is a
@@ -561,6 +562,15 @@ bool CurveMaker::any_occluder(const WorldPiece& wp) const {
     if (f.occluder || (f.projected && f.facing == Facing::EdgeOn)) return true;
   }
   return false;
+}
+
+// Whether some facet sharing the piece is seen with area (facing the eye or
+// away from it, exactly): then its plane is not seen edge-on, so that two of
+// its points never have one image, and the piece, two distinct points of it
+// (its ends), is not seen end-on: no need to compare its ends' images.
+bool CurveMaker::seen_with_area(const WorldPiece& wp) const {
+  return std::any_of(wp.sharers.begin(), wp.sharers.end(),
+                     [&](const Sharer& s) { return facing(s.facet) != Facing::EdgeOn; });
 }
 
 // Whether an occluder lies on each side of the piece on screen: two sharers,
@@ -662,7 +672,7 @@ bool CurveMaker::make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3
   c.t = fb ? &image(b) : &ends.emplace_back(clip_point(a, b));
   c.vs = fa ? static_cast<VertexId>(a) : -1;
   c.vt = fb ? static_cast<VertexId>(b) : -1;
-  if (equal_points(c.s->xy(), c.t->xy())) { ++dropped_point; return false; }   // seen end-on
+  if (!seen_with_area(wp) && equal_points(c.s->xy(), c.t->xy())) { ++dropped_point; return false; }   // seen end-on
   c.box = box_of(*c.s) + box_of(*c.t);
   return true;
 }
@@ -677,6 +687,7 @@ CurveMaker::Verdict CurveMaker::judge(const WorldPiece& wp) const {
   if (drawn_of(faces, kind_of(faces, facet))) return Verdict::Drawn;
   const bool fa = in_front(wp.a), fb = in_front(wp.b);
   if (!fa && !fb) return Verdict::Clipped;
+  if (seen_with_area(wp)) return Verdict::Latent;
   if (fa && fb) {
     if (same_image(wp.a, wp.b)) return Verdict::EndOn;
   } else {
