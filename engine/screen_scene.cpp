@@ -968,13 +968,20 @@ std::vector<int> solid_labels(const ClosedComponents& cc, const std::vector<int>
   return solid;
 }
 
+// The box of a polygon's n corners, corner(k), from their intervals.
+template <class Corner>
+CGAL::Bbox_2 corners_box(const ScreenScene& ss, std::size_t n, Corner&& corner) {
+  CGAL::Bbox_2 box = box_at(ss, corner(0));
+  for (std::size_t k = 1; k < n; ++k) box += box_at(ss, corner(k));
+  return box;
+}
+
 // A facet's box and depth range (zlo, zhi), from its corners' intervals.
 void bound(const ScreenScene& ss, Facet& f) {
-  f.box = box_at(ss, f.v[0]);
+  f.box = corners_box(ss, f.v.size(), [&](std::size_t k) -> const P3& { return f.v[k]; });
   f.zlo = HUGE_VAL;
   f.zhi = -HUGE_VAL;
   for (const auto& p : f.v) {
-    f.box += box_at(ss, p);
     const Interval z = ss.z_of(p);
     f.zlo = std::min(f.zlo, z.inf());
     f.zhi = std::max(f.zhi, z.sup());
@@ -1243,8 +1250,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     b.projected = true;
     b.facing = facing_of(n, corner, [&](std::size_t k) { return w.v[k]; });
     if (b.facing == Facing::EdgeOn) { ++edge_on; return; }
-    b.box = box_at(ss, corner(0));
-    for (std::size_t k = 1; k < n; ++k) b.box += box_at(ss, corner(k));
+    b.box = corners_box(ss, n, corner);
     b.occluder = true;
     if (!parallel_to_screen(ss, n, corner)) exact->spanning[fi] = spanning_ids(scene, w);
   };
