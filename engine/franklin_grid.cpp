@@ -305,6 +305,19 @@ std::vector<double> end_coordinates(const ScreenScene& ss, bool x, std::size_t w
   return v;
 }
 
+// The boxes of runs of Grid::kRun consecutive items of n, add(i, box) adding
+// item i's to its run's (or not), chunks of runs in parallel.
+template <class Add>
+std::vector<CGAL::Bbox_2> run_boxes(int n, int threads, Add&& add) {
+  const int runs = (n + Grid::kRun - 1) / Grid::kRun;
+  std::vector<CGAL::Bbox_2> box(static_cast<std::size_t>(runs));   // (each empty)
+  parallel_chunks(runs, 256, threads, [&](int, Chunk r) {
+    for (int k = r.begin; k < r.end; ++k)
+      for (int i = k * Grid::kRun; i < std::min(n, (k + 1) * Grid::kRun); ++i) add(i, box[static_cast<std::size_t>(k)]);
+  });
+  return box;
+}
+
 }  // namespace
 
 Axis::Axis(std::vector<double> bounds) : bounds_(std::move(bounds)) {
@@ -330,32 +343,20 @@ Axis::Axis(std::vector<double> bounds) : bounds_(std::move(bounds)) {
 // vary (a close-up in perspective: near faces thousands of times larger than far
 // ones), and N, L and the depth complexity are measured in those coordinates.
 Grid make_grid(const ScreenScene& ss, double c, int threads, Stats& stats) {
-  // The box of the curves and occluders (chunks of each in parallel).
-  const int ncurves = static_cast<int>(curve_count(ss)), nfacets = static_cast<int>(ss.facet_count());
-  const int size = 16384, curve_chunks = chunk_count(ncurves, size);
-  std::vector<std::optional<CGAL::Bbox_2>> boxes(static_cast<std::size_t>(curve_chunks + chunk_count(nfacets, size)));
-  parallel_for(static_cast<int>(boxes.size()), threads, [&](int k) {
-    std::optional<CGAL::Bbox_2> b;   // (stored once, below)
-    auto add = [&](const CGAL::Bbox_2& x) { b = b ? *b + x : x; };
-    if (k < curve_chunks) {
-      const Chunk r = chunk(k, ncurves, size);
-      for (int i = r.begin; i < r.end; ++i) add(curve_box(ss, static_cast<std::size_t>(i)));
-    } else {
-      const Chunk r = chunk(k - curve_chunks, nfacets, size);
-      for (int i = r.begin; i < r.end; ++i)
-        if (ss.brief(i).occluder) add(ss.brief(i).box);
-    }
-    boxes[static_cast<std::size_t>(k)] = b;
-  });
-  CGAL::Bbox_2 box;
-  bool any = false;
-  for (const auto& b : boxes)
-    if (b) {
-      box = any ? box + *b : *b;
-      any = true;
-    }
-  if (!any) box = CGAL::Bbox_2(0, 0, 1, 1);
+  // The box of the curves and occluders: the union of the made curves' boxes
+  // and of the boxes of runs of latent curves and of occluders (kept for step 5).
   Grid g;
+  g.latent_runs = run_boxes(static_cast<int>(ss.latent_piece.size()), threads,
+                            [&](int i, CGAL::Bbox_2& b) { b += latent_box(ss, static_cast<std::size_t>(i)); });
+  g.occluder_runs = run_boxes(static_cast<int>(ss.facet_count()), threads, [&](int i, CGAL::Bbox_2& b) {
+    if (ss.brief(i).occluder) b += ss.brief(i).box;
+  });
+  CGAL::Bbox_2 box;   // (empty)
+  for (const Curve& curve : ss.curves) box += curve.box;
+  for (const auto* runs : {&g.latent_runs, &g.occluder_runs})
+    for (const CGAL::Bbox_2& b : *runs) box += b;
+  const bool any = box.xmin() <= box.xmax();
+  if (!any) box = CGAL::Bbox_2(0, 0, 1, 1);
   // The curves the cells are sized for. A lines-only drawing's latent curves (not
   // drawn) are mostly never listed: they count for 1/64 each, so that the grid
   // stays coarse where only the facets fill it (their pair search and hiding
@@ -489,6 +490,35 @@ bool bucket_facet(Grid& g, const ScreenScene& ss, int fi, int ix, int iy, std::i
 
 namespace {
 
+// Marked cells (a char per cell, row-major), and whether a range of cells holds
+// one, in four reads: a summed-area table.
+class MarkedCells {
+ public:
+  MarkedCells(const Grid& g, const std::vector<char>& mark)
+      : columns_(g.X.cells() + 1), sum_(static_cast<std::size_t>(columns_) * (g.Y.cells() + 1), 0) {
+    const int nx = g.X.cells(), ny = g.Y.cells();
+    for (int y = 0; y < ny; ++y) {
+      std::uint32_t row = 0;   // marks in cells (0 .. x, y)
+      for (int x = 0; x < nx; ++x) {
+        row += mark[static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(x)] != 0;
+        at(x + 1, y + 1) = at(x + 1, y) + row;
+      }
+    }
+  }
+  bool any(const CellRange& r) const {
+    return r.x0 <= r.x1 && r.y0 <= r.y1 && at(r.x1 + 1, r.y1 + 1) - at(r.x0, r.y1 + 1) - at(r.x1 + 1, r.y0) + at(r.x0, r.y0) != 0;
+  }
+  // Whether the cells of box b (empty: none) hold one.
+  bool any(const Grid& g, const CGAL::Bbox_2& b) const { return b.xmin() <= b.xmax() && any(range_of(g, b)); }
+
+ private:
+  // Marks in the cells [0, x) x [0, y) (modulo 2^32: differences are exact).
+  std::uint32_t& at(int x, int y) { return sum_[static_cast<std::size_t>(y) * columns_ + static_cast<std::size_t>(x)]; }
+  std::uint32_t at(int x, int y) const { return sum_[static_cast<std::size_t>(y) * columns_ + static_cast<std::size_t>(x)]; }
+  std::size_t columns_;
+  std::vector<std::uint32_t> sum_;
+};
+
 // The cells steps 5-11 may look at, for a lines-only drawing where no two faces
 // pierce each other (one solid or height field: no intersection line can start
 // a drawn line anywhere), or none (empty: every cell). A curve is listed in a
@@ -506,8 +536,7 @@ struct DrawingCells {
   std::vector<char> latent_near;   // per latent curve
   bool all() const { return cell.empty(); }
 };
-DrawingCells drawing_cells(const Grid& g, const ScreenScene& ss, const ImageCells& image_cells, bool regions,
-                           int threads) {
+DrawingCells drawing_cells(const Grid& g, const ScreenScene& ss, bool regions, int threads) {
   DrawingCells d;
   const std::vector<WorldPiece>* pieces = latent_pieces_of(ss);
   if (regions || !occluders_in_one_solid(ss) || (!ss.latent_piece.empty() && !pieces)) return d;
@@ -519,30 +548,29 @@ DrawingCells drawing_cells(const Grid& g, const ScreenScene& ss, const ImageCell
   std::vector<char> drawn(g.cells.size(), 0);
   for (const Curve& c : ss.curves)
     if (c.drawn) each_cell(range_of(g, c.box), [&](std::size_t k) { drawn[k] = 1; });
-  auto near = [&](const CellRange& r) {
-    bool any = false;
-    each_cell(r, [&](std::size_t k) { any |= drawn[k] != 0; });
-    return any;
-  };
+  const MarkedCells near_drawn(g, drawn);
   // The candidates' sharers, and the candidates' cells.
   d.whole.assign(ss.facet_count(), 0);
   d.cell.assign(g.cells.size(), 0);
   for (const Curve& c : ss.curves) {
     const CellRange r = range_of(g, c.box);
-    if (!near(r)) continue;
+    if (!near_drawn.any(r)) continue;
     each_cell(r, [&](std::size_t k) { d.cell[k] = 1; });
     for (int f : c.sharers) d.whole[static_cast<std::size_t>(f)] = 1;
   }
+  // The latent candidates, from the runs whose box reaches a drawn curve's cell
+  // (a curve's cells lie within its run's).
   d.latent_near.assign(ss.latent_piece.size(), 0);
-  const int n = static_cast<int>(ss.latent_piece.size()), size = 16384;
-  std::vector<std::vector<std::pair<int, CellRange>>> found(static_cast<std::size_t>(chunk_count(n, size)));
-  parallel_chunks(n, size, threads, [&](int k, Chunk r) {
+  const int n = static_cast<int>(ss.latent_piece.size()), runs = static_cast<int>(g.latent_runs.size());
+  std::vector<std::vector<std::pair<int, CellRange>>> found(static_cast<std::size_t>(chunk_count(runs, 256)));
+  parallel_chunks(runs, 256, threads, [&](int k, Chunk r) {
     std::vector<std::pair<int, CellRange>> here;   // (filled here, stored once)
-    for (int i = r.begin; i < r.end; ++i) {
-      CellRange range;   // (its box is its ends' boxes)
-      if (!image_cells.hull(latent_ends(ss, static_cast<std::size_t>(i)), 2, range))
-        range = range_of(g, latent_box(ss, static_cast<std::size_t>(i)));
-      if (near(range)) here.emplace_back(i, range);
+    for (int run = r.begin; run < r.end; ++run) {
+      if (!near_drawn.any(g, g.latent_runs[static_cast<std::size_t>(run)])) continue;
+      for (int i = run * Grid::kRun; i < std::min(n, (run + 1) * Grid::kRun); ++i) {
+        const CellRange range = range_of(g, latent_box(ss, static_cast<std::size_t>(i)));
+        if (near_drawn.any(range)) here.emplace_back(i, range);
+      }
     }
     found[static_cast<std::size_t>(k)] = std::move(here);
   });
@@ -554,8 +582,41 @@ DrawingCells drawing_cells(const Grid& g, const ScreenScene& ss, const ImageCell
         d.whole[static_cast<std::size_t>(s.facet)] = 1;
     }
   for (std::size_t f = 0; f < d.whole.size(); ++f)
-    if (d.whole[f]) each_cell(g.facet_range[f], [&](std::size_t k) { d.cell[k] = 1; });
+    if (d.whole[f]) each_cell(range_of(g, ss.brief(f).box), [&](std::size_t k) { d.cell[k] = 1; });
   return d;
+}
+
+// Each facet's cells (those of its box; the hull of its corners' cells, where
+// they are images, is the same: Axis::index is monotone), for step 5 and the
+// pair search. Where only some cells are looked at, only the occluders' in
+// runs whose box reaches one of them (no other is listed; the rest: no cells).
+std::vector<CellRange> facet_ranges(const Grid& g, const ScreenScene& ss, const DrawingCells& only, int threads) {
+  const int nf = static_cast<int>(ss.facet_count());
+  std::vector<CellRange> range(ss.facet_count());
+  if (!only.all()) {
+    const MarkedCells looked(g, only.cell);
+    parallel_chunks(static_cast<int>(g.occluder_runs.size()), 256, threads, [&](int, Chunk r) {
+      for (int run = r.begin; run < r.end; ++run) {
+        const bool near = looked.any(g, g.occluder_runs[static_cast<std::size_t>(run)]);
+        for (int fi = run * Grid::kRun; fi < std::min(nf, (run + 1) * Grid::kRun); ++fi)
+          range[static_cast<std::size_t>(fi)] = near && ss.brief(fi).occluder ? range_of(g, ss.brief(fi).box) : CellRange{0, -1, 0, -1};
+      }
+    });
+    return range;
+  }
+  const ImageCells image_cells(g, ss, threads);   // (four lookups per image instead of four per facet)
+  parallel_chunks(nf, 4096, threads, [&](int, Chunk r) {
+    for (int fi = r.begin; fi < r.end; ++fi) {
+      CellRange& here = range[static_cast<std::size_t>(fi)];
+      if (const Facet* f = ss.made_facet(static_cast<std::size_t>(fi))) {
+        if (!image_cells.hull(f->v, f->v.size(), here)) here = range_of(g, f->box);
+        continue;
+      }
+      const SmallVec<const P3*, 4> v = corners_of(ss, static_cast<std::size_t>(fi));
+      if (!image_cells.hull(v, v.size(), here)) here = range_of(g, ss.brief(static_cast<std::size_t>(fi)).box);
+    }
+  });
+  return range;
 }
 
 }  // namespace
@@ -566,30 +627,15 @@ DrawingCells drawing_cells(const Grid& g, const ScreenScene& ss, const ImageCell
 // drawing_cells.)
 void bucket_facets(Grid& g, ScreenScene& ss, bool regions, int threads, Stats& stats) {
   const int nf = static_cast<int>(ss.facet_count());
-  // Each facet's cells, once (the rows below and the pair search read them).
-  const ImageCells image_cells(g, ss, threads);
-  g.facet_range.resize(ss.facet_count());
-  parallel_chunks(nf, 4096, threads, [&](int, Chunk r) {
-    for (int fi = r.begin; fi < r.end; ++fi) {
-      CellRange& range = g.facet_range[static_cast<std::size_t>(fi)];
-      if (const Facet* f = ss.made_facet(static_cast<std::size_t>(fi))) {
-        if (!image_cells.hull(f->v, f->v.size(), range)) range = range_of(g, f->box);
-        continue;
-      }
-      const SmallVec<const P3*, 4> v = corners_of(ss, static_cast<std::size_t>(fi));
-      if (!image_cells.hull(v, v.size(), range)) range = range_of(g, ss.brief(static_cast<std::size_t>(fi)).box);
-    }
-  });
-  DrawingCells only = drawing_cells(g, ss, image_cells, regions, threads);
+  DrawingCells only = drawing_cells(g, ss, regions, threads);
   g.latent_near = std::move(only.latent_near);
+  g.facet_range = facet_ranges(g, ss, only, threads);
   auto looked_at = [&](int ix, int iy) { return only.all() || only.cell[static_cast<std::size_t>(iy) * g.X.cells() + ix]; };
+  const std::optional<MarkedCells> looked = only.all() ? std::nullopt : std::optional<MarkedCells>(std::in_place, g, only.cell);
   std::vector<char> listed(ss.facet_count(), 0);
   const ItemsByRow rows = items_by_row(g, nf, threads, [&](int fi) {
     const CellRange& r = g.facet_range[static_cast<std::size_t>(fi)];
-    bool any = only.all();
-    for (int iy = r.y0; iy <= r.y1 && !any; ++iy)
-      for (int ix = r.x0; ix <= r.x1 && !any; ++ix) any = looked_at(ix, iy);
-    listed[static_cast<std::size_t>(fi)] = ss.brief(static_cast<std::size_t>(fi)).occluder && any;
+    listed[static_cast<std::size_t>(fi)] = ss.brief(static_cast<std::size_t>(fi)).occluder && (!looked || looked->any(r));
     return listed[static_cast<std::size_t>(fi)] ? std::array<int, 2>{r.y0, r.y1} : kNoRows;
   });
   // The images of what steps 5-11 may read (where they are left for later: a

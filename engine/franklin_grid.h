@@ -66,6 +66,13 @@ struct Grid {
   std::vector<CellRange> facet_range;   // per facet, its box's cells (set by step 5, read by the pair search)
   std::vector<char> latent_near;        // per latent curve: its box reaches a cell a drawn curve's box reaches
                                         // (set by step 5 where it looks only there; empty: not known)
+  // The boxes of runs of kRun consecutive latent curves, and of the occluding
+  // facets among runs of kRun facets (empty: none), by run. Both are in screen
+  // order, so a run lies close together: where a lines-only drawing looks only
+  // at some cells, step 5 passes over every run whose box reaches none of them.
+  // (Set by make_grid, which takes the grid's box from them.)
+  static constexpr int kRun = 64;
+  std::vector<CGAL::Bbox_2> latent_runs, occluder_runs;
   Cell& at(int ix, int iy) { return cells[static_cast<std::size_t>(iy) * X.cells() + ix]; }
   const Cell& at(int ix, int iy) const { return cells[static_cast<std::size_t>(iy) * X.cells() + ix]; }
 };
