@@ -11,6 +11,8 @@
 #include <array>
 #include <cmath>
 #include <initializer_list>
+#include <limits>
+#include <optional>
 
 #include "engine/scene.h"
 
@@ -116,6 +118,65 @@ inline bool within(int e, std::initializer_list<const Vec3*> pts) {
   for (const Vec3* v : pts)
     if (!(std::abs(v->x) <= bound && std::abs(v->y) <= bound && std::abs(v->z) <= bound)) return false;
   return true;
+}
+
+// A facet's unit normal, ((p - o) x (q - o)) / |(p - o) x (q - o)| rounded to
+// floats, and an upper bound on its distance from the exact one: infinity
+// where none is known. 16 bytes per facet that decide most crease tests (the
+// angle between two facets' normals against a threshold) without reading the
+// facets' corners, which a mesh's edges reach in no useful order.
+struct UnitNormal {
+  std::array<float, 3> n{};
+  float err = std::numeric_limits<float>::infinity();
+};
+
+// The estimate of (p - o) x (q - o)'s direction. Bounds (u = 2^-53), where
+// every component of a = p - o and b = q - o is at most 2^200 (nothing
+// overflows below): a and b are off by u relatively (exact where they are
+// subnormal), and each component of the normal m computed from them by at most
+// 4.01 u (|a_j b_k| + |a_k b_j|) plus 2^-1072 (products that underflow), so
+// |m - N| <= B = 8 u S + 2^-1000, with S the sum of those six products
+// (computed: 2x margin). Where L = |m| as computed is at least 2^-400 (the
+// squares that underflow then count for nothing), it is off by 3u, and
+// |N| >= 0.999 L - B > 0.749 L where B < 0.2497 L (else nothing is kept), and
+// m / |m| is off from N / |N| by at most 2 |m - N| / |N| < 2.68 B / L; scaling
+// by 1 / L as computed adds 6u, and rounding to floats 2^-24 (1 + 6u). The
+// sum, with a 1.001 margin that also covers its own roundings (and 1 / L's: 2.7
+// for 2.68), is kept where it is below 1/4.
+inline UnitNormal unit_normal(const Vec3& o, const Vec3& p, const Vec3& q) {
+  UnitNormal out;
+  const double a[3] = {p.x - o.x, p.y - o.y, p.z - o.z}, b[3] = {q.x - o.x, q.y - o.y, q.z - o.z};
+  const double big = std::max({std::abs(a[0]), std::abs(a[1]), std::abs(a[2]), std::abs(b[0]), std::abs(b[1]), std::abs(b[2])});
+  if (!(big <= 0x1p200)) return out;   // (NaN too)
+  const double m[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  const double S = std::abs(a[1] * b[2]) + std::abs(a[2] * b[1]) + std::abs(a[2] * b[0]) + std::abs(a[0] * b[2]) +
+                   std::abs(a[0] * b[1]) + std::abs(a[1] * b[0]);
+  const double B = 8 * 0x1p-53 * S + 0x1p-1000, L = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+  if (!(L >= 0x1p-400 && B < 0.2497 * L)) return out;
+  const double inv = 1 / L, err = (2.7 * B * inv + 0x1p-24 * 1.001) * 1.001;
+  if (!(err < 0.25)) return out;
+  for (int i = 0; i < 3; ++i) out.n[static_cast<std::size_t>(i)] = static_cast<float>(m[i] * inv);
+  out.err = static_cast<float>(err * (1 + 0x1p-20));   // (rounded to nearest: the margin keeps it above)
+  return out;
+}
+
+// Whether two facets whose unit normals are estimated by x and y meet at a
+// crease at cosine c (the cosine of the angle between their exact normals is
+// below c), where the estimates tell; nullopt where they cannot. The exact unit
+// normals n_x, n_y: |x.n . y.n - n_x . n_y| <= ex |y.n| + ey |n_x| <= ex (1 +
+// ey) + ey; the dot product of floats in doubles (exact products, two
+// roundings) adds at most 2.01 u (1 + ex)(1 + ey) < 2^-50 (errors below 1/4).
+// The bound, rounded (3u), is kept above that by its 1 + 2^-40 margin, and
+// c - dot (or dot - c) above the bound only where the real difference is.
+inline std::optional<bool> crease_from_normals(const UnitNormal& x, const UnitNormal& y, double c) {
+  const double ex = x.err, ey = y.err;
+  if (!(ex < 0.25 && ey < 0.25)) return std::nullopt;
+  const double dot = static_cast<double>(x.n[0]) * y.n[0] + static_cast<double>(x.n[1]) * y.n[1] +
+                     static_cast<double>(x.n[2]) * y.n[2];
+  const double bound = (ex + ey + ex * ey) * (1 + 0x1p-40) + 0x1p-50;
+  if (c - dot > bound) return true;
+  if (dot - c > bound) return false;
+  return std::nullopt;
 }
 
 }  // namespace vismap::engine::world

@@ -295,6 +295,24 @@ bool is_simple_ring(const std::vector<Q2>& q) {
 }
 
 
+namespace {
+
+// Each triangle's unit normal from its corners in order, which are its spanning
+// corners (spanning_ids); unknown for the others. Chunks in parallel, in the
+// input's order (a face's corners are mostly near the last face's in memory).
+std::vector<world::UnitNormal> unit_normals(const Scene& scene, const std::vector<WorldFacet>& facets, int threads) {
+  std::vector<world::UnitNormal> normals(facets.size());
+  parallel_chunks(static_cast<int>(facets.size()), 8192, threads, [&](int, Chunk r) {
+    for (auto f = static_cast<std::size_t>(r.begin); f < static_cast<std::size_t>(r.end); ++f) {
+      const auto& v = facets[f].v;
+      if (v.size() == 3) normals[f] = world::unit_normal(scene.vertices[v[0]], scene.vertices[v[1]], scene.vertices[v[2]]);
+    }
+  });
+  return normals;
+}
+
+}  // namespace
+
 WorldFacets make_world_facets(const Scene& scene, int threads) {
   const std::vector<std::uint32_t> canon = canonical_vertex_ids(scene, threads);
   // Chunks of faces in parallel, joined in order (their counts beside them).
@@ -323,6 +341,7 @@ WorldFacets make_world_facets(const Scene& scene, int threads) {
     out.nonplanar += c.nonplanar;
     out.nonconvex += c.nonconvex;
   }
+  out.normals = unit_normals(scene, out.facets, threads);
   return out;
 }
 

@@ -10,6 +10,7 @@
 
 #include "engine/scene.h"
 #include "engine/small_vec.h"
+#include "engine/world_exact.h"
 
 namespace vismap::engine {
 
@@ -33,6 +34,10 @@ struct WorldFacet {
 
 struct WorldFacets {
   std::vector<WorldFacet> facets;
+  // Per facet, its unit normal estimated from its spanning corners (a
+  // triangle's; unknown for a larger polygon), for crease tests: kept in the
+  // facets' order wherever they are reordered (empty: none known).
+  std::vector<world::UnitNormal> normals;
   std::int64_t degenerate = 0, nonplanar = 0, nonconvex = 0;
 };
 

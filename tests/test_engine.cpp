@@ -871,6 +871,59 @@ TEST(Crease, KindAtTheThresholdAsTheExactTest) {
   EXPECT_GT(smooth, 100);
 }
 
+// world::unit_normal's estimate lies within its error bound of the exact unit
+// normal (|f - N / |N||^2 <= err^2, decided exactly: 2 f.N >= (|f|^2 + 1 -
+// err^2) |N|), and crease_from_normals, where it answers, answers as the exact
+// test (n1.n2 < c |n1||n2|) for c anywhere in [-1, 1], about the pair's own
+// cosine, and within 3e-7 of it (inside the floats' uncertainty). With either
+// bound cut to the floats' rounding alone, this fails. Triangles at scales from
+// 2^-250 (products near underflow: no estimate) to 2^190, off the origin, some
+// of them thin.
+TEST(Crease, NormalEstimatesDecideAsTheExactTest) {
+  using M = CGAL::Mpzf;
+  namespace world = vismap::engine::world;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::uniform_int_distribution<int> exponent(-250, 190);
+  auto exact_crease = [](const std::array<M, 3>& n1, const std::array<M, 3>& n2, double c) {
+    const M d = n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2];
+    const M l = (n1[0] * n1[0] + n1[1] * n1[1] + n1[2] * n1[2]) * (n2[0] * n2[0] + n2[1] * n2[1] + n2[2] * n2[2]);
+    const int e = (d * d - M(c) * M(c) * l).sign();
+    return c >= 0 ? d.sign() < 0 || e < 0 : d.sign() < 0 && e > 0;
+  };
+  auto within_bound = [](const world::UnitNormal& f, const std::array<M, 3>& N) {
+    const M fx(static_cast<double>(f.n[0])), fy(static_cast<double>(f.n[1])), fz(static_cast<double>(f.n[2]));
+    const M dot = fx * N[0] + fy * N[1] + fz * N[2], e(static_cast<double>(f.err));
+    const M rhs = fx * fx + fy * fy + fz * fz + M(1.0) - e * e;
+    if (rhs.sign() <= 0) return true;
+    return dot.sign() > 0 && (M(4.0) * dot * dot - rhs * rhs * (N[0] * N[0] + N[1] * N[1] + N[2] * N[2])).sign() >= 0;
+  };
+  int settled = 0, unsettled_near = 0, asked = 0;
+  for (int n = 0; n < 60000; ++n) {
+    const double scale = std::ldexp(1.0, exponent(rng)), offset = n % 2 ? 0 : 1e6 * scale;
+    auto pt = [&] { return Vec3{offset + unit(rng) * scale, unit(rng) * scale, offset + unit(rng) * scale}; };
+    std::array<Vec3, 6> v{pt(), pt(), pt(), pt(), pt(), pt()};
+    if (n % 5 == 0) v[2] = {v[0].x + 0.5 * (v[1].x - v[0].x), v[0].y + 0.5 * (v[1].y - v[0].y) + 1e-9 * scale, v[0].z};   // thin
+    const world::UnitNormal f = world::unit_normal(v[0], v[1], v[2]), g = world::unit_normal(v[3], v[4], v[5]);
+    const auto N1 = world::normal_of<M>(v[0], v[1], v[2]), N2 = world::normal_of<M>(v[3], v[4], v[5]);
+    ASSERT_TRUE(within_bound(f, N1)) << n;
+    ASSERT_TRUE(within_bound(g, N2)) << n;
+    const double cos_here = static_cast<double>(f.n[0]) * g.n[0] + static_cast<double>(f.n[1]) * g.n[1] +
+                            static_cast<double>(f.n[2]) * g.n[2];
+    const double c = std::clamp(n % 3 == 0 ? unit(rng) : cos_here + (n % 3 == 1 ? 3e-7 * unit(rng) : 0.0), -1.0, 1.0);
+    const std::optional<bool> told = world::crease_from_normals(f, g, c);
+    ++asked;
+    if (told) {
+      ASSERT_EQ(*told, exact_crease(N1, N2, c)) << n;
+      ++settled;
+    } else if (n % 3 != 0) {
+      ++unsettled_near;
+    }
+  }
+  EXPECT_GT(settled, asked / 3);        // (random thresholds: nearly all settled)
+  EXPECT_GT(unsettled_near, asked / 4);   // (the near ones: left to the exact test)
+}
+
 // Two faces at a right angle (the edges of every box): n1.n2 is exactly 0, which
 // no filter settles. The angle between the normals is 90 degrees, so the edge is
 // a crease under every crease angle below 90 and smooth above it (where the
