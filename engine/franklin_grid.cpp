@@ -590,16 +590,16 @@ DrawingCells drawing_cells(const Grid& g, const ScreenScene& ss, bool regions, i
 
 // Each facet's cells (those of its box; the hull of its corners' cells, where
 // they are images, is the same: Axis::index is monotone), for step 5 and the
-// pair search. Where only some cells are looked at, only the occluders' in
-// runs whose box reaches one of them (no other is listed; the rest: no cells).
-std::vector<CellRange> facet_ranges(const Grid& g, const ScreenScene& ss, const DrawingCells& only, int threads) {
+// pair search. Where only some cells are looked at (`looked`), only the
+// occluders' in runs whose box reaches one of them (no other is listed; the
+// rest: no cells).
+std::vector<CellRange> facet_ranges(const Grid& g, const ScreenScene& ss, const MarkedCells* looked, int threads) {
   const int nf = static_cast<int>(ss.facet_count());
   std::vector<CellRange> range(ss.facet_count());
-  if (!only.all()) {
-    const MarkedCells looked(g, only.cell);
+  if (looked) {
     parallel_chunks(static_cast<int>(g.occluder_runs.size()), 256, threads, [&](int, Chunk r) {
       for (int run = r.begin; run < r.end; ++run) {
-        const bool near = looked.any(g, g.occluder_runs[static_cast<std::size_t>(run)]);
+        const bool near = looked->any(g, g.occluder_runs[static_cast<std::size_t>(run)]);
         for (int fi = run * Grid::kRun; fi < std::min(nf, (run + 1) * Grid::kRun); ++fi)
           range[static_cast<std::size_t>(fi)] = near && ss.brief(fi).occluder ? range_of(g, ss.brief(fi).box) : CellRange{0, -1, 0, -1};
       }
@@ -631,9 +631,9 @@ void bucket_facets(Grid& g, ScreenScene& ss, bool regions, int threads, Stats& s
   const int nf = static_cast<int>(ss.facet_count());
   DrawingCells only = drawing_cells(g, ss, regions, threads);
   g.latent_near = std::move(only.latent_near);
-  g.facet_range = facet_ranges(g, ss, only, threads);
   auto looked_at = [&](int ix, int iy) { return only.all() || only.cell[static_cast<std::size_t>(iy) * g.X.cells() + ix]; };
   const std::optional<MarkedCells> looked = only.all() ? std::nullopt : std::optional<MarkedCells>(std::in_place, g, only.cell);
+  g.facet_range = facet_ranges(g, ss, looked ? &*looked : nullptr, threads);
   std::vector<char> listed(ss.facet_count(), 0);
   const ItemsByRow rows = items_by_row(g, nf, threads, [&](int fi) {
     const CellRange& r = g.facet_range[static_cast<std::size_t>(fi)];
