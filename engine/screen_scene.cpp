@@ -443,6 +443,7 @@ struct CurveMaker {
   const P3* sv = nullptr;             // images, by place (the screen scene's table)
   const ImageBounds* bounds = nullptr;   // their intervals, by place, where they are left for later
   std::vector<char> front;            // in front of the near plane, by place
+  bool all_front = false;             // every vertex is (in_front then reads nothing)
   const ExactSource* exact = nullptr;   // (the screen scene's)
   std::vector<std::vector<P3>> clip_edges;   // per facet: its cut by the near plane (perspective only)
   bool cut(int facet) const { return !clip_edges.empty() && !clip_edges[static_cast<std::size_t>(facet)].empty(); }
@@ -486,7 +487,7 @@ struct CurveMaker {
     return l.projected ? l.facing : Facing::EdgeOn;
   }
 
-  bool in_front(std::uint32_t id) const { return front[local[id]] != 0; }
+  bool in_front(std::uint32_t id) const { return all_front || front[local[id]] != 0; }
   const P3& image(std::uint32_t id) const { return sv[local[id]]; }
   // The image of the vertex at place u (in front of the near plane), made now.
   P3 make_image(std::uint32_t u) const;
@@ -1159,7 +1160,8 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   // parallel. A lines-only drawing that the near plane cuts nowhere leaves them
   // for later (only their intervals now): it needs those near its drawn lines
   // (make_images), mostly a few per cent.
-  const bool later = latent && std::all_of(front.begin(), front.end(), [](char f) { return f != 0; }) && can_defer_images;
+  M.all_front = std::all_of(front.begin(), front.end(), [](char f) { return f != 0; });
+  const bool later = latent && M.all_front && can_defer_images;
   ss.images = ImageTable(used.size());
   if (later) {
     ss.image_bounds = parallel_make<ImageBounds>(nu, 1024, threads, [&](int, int u, ImageBounds& b) {
