@@ -892,6 +892,7 @@ TEST(Crease, NormalEstimatesDecideAsTheExactTest) {
     return c >= 0 ? d.sign() < 0 || e < 0 : d.sign() < 0 && e > 0;
   };
   auto within_bound = [](const world::UnitNormal& f, const std::array<M, 3>& N) {
+    if (!std::isfinite(f.err)) return true;   // (no estimate: nothing claimed)
     const M fx(static_cast<double>(f.n[0])), fy(static_cast<double>(f.n[1])), fz(static_cast<double>(f.n[2]));
     const M dot = fx * N[0] + fy * N[1] + fz * N[2], e(static_cast<double>(f.err));
     const M rhs = fx * fx + fy * fy + fz * fz + M(1.0) - e * e;
