@@ -3,6 +3,7 @@
 // they share one edge piece. Exact: lines are grouped by an exact rational key.
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "engine/small_vec.h"
@@ -43,6 +44,25 @@ struct MatchedEdges {
 std::vector<WorldPiece> match_edges(const Scene& scene, const WorldFacets& wf, int cell_bits = 20,
                                     int threads = 1);
 MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int cell_bits = 20, int threads = 1);
+
+// The pieces that vertex pairs alone give, on a surface that may be a disk:
+// facet edges between the same two vertices share one piece, and nothing else
+// is matched. Those are match_edges' pieces wherever no vertex of the scene lies
+// inside an edge of it, as on a surface certified a height field
+// (engine/height_fields.h: its projection is one to one): the caller must know
+// that. Only for facets that are all triangles, no two vertices joined by more
+// than two facet edges, and V - E + F = 1 (a disk's count, the only surface
+// that certificate passes); else nullopt. Each piece as match_edges gives it;
+// in the order of their first sharing facet, then of their vertex pairs (their
+// ranks, vertex_pair_ranks). local[id]: input vertex id's number in the order
+// the facets first use them (number_by_first_use), nused of them; a pair's
+// edges are then found near each other in memory.
+std::optional<std::vector<WorldPiece>> pieces_of_vertex_pairs(const Scene& scene, const WorldFacets& wf,
+                                                               const std::vector<std::uint32_t>& local,
+                                                               std::size_t nused);
+// The ranks of pieces_of_vertex_pairs' pieces: their vertex pairs (unique, and
+// the same whatever the facets' order, so that renumber_facets keeps them).
+std::vector<PieceRank> vertex_pair_ranks(const std::vector<WorldPiece>& pieces);
 
 // The hash of the cells that tell the line through p and q (p != q) apart at
 // cell_bits: from doubles with error bounds where they decide, else from

@@ -1105,11 +1105,18 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   } else {
     M.wf = make_world_facets(scene, threads);
     order_on_screen(M.wf, screen_order(M.wf, scene, view, threads), threads);
+  }
+  // Each vertex is transformed once. Its image is stored at its place in
+  // `used`, not at its input index, so that facets and curves read their
+  // vertices nearly in sequence.
+  number_by_first_use(M.wf, scene.vertices.size(), M.used, M.local);
+  if (!world && cull) {
+    MatchedSolids m = match_edges_and_solids(scene, M.wf, M.local, M.used.size(), /*ranked=*/false, threads);
+    M.pieces = std::move(m.edges.pieces);
+    closed = std::move(m.closed);
+    height_field = std::move(m.height_field);
+  } else if (!world) {
     M.pieces = match_edges(scene, M.wf, /*cell_bits=*/20, threads);
-    if (cull) {
-      closed = closed_components(scene, M.wf, M.pieces, threads);
-      height_field = height_field_components(scene, M.wf, M.pieces, closed.connected_components(), threads);
-    }
   }
   WorldFacets& wf = M.wf;
   std::vector<WorldPiece>& pieces = M.pieces;
@@ -1118,15 +1125,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   stats.count("faces_nonconvex_triangulated", wf.nonconvex);
   stats.count("facets", static_cast<std::int64_t>(wf.facets.size()));
 
-  // Each vertex is transformed once. Its image is stored at its place in
-  // `used` (the order facets first use it: screen order), not at its input
-  // index, so that facets and curves read their vertices nearly in sequence.
   std::vector<std::uint32_t>& used = M.used;
-  std::vector<std::uint32_t>& local = M.local;
-  local.assign(scene.vertices.size(), ~0u);
-  for (const auto& f : wf.facets)
-    for (auto id : f.v)
-      if (local[id] == ~0u) { local[id] = static_cast<std::uint32_t>(used.size()); used.push_back(id); }
   ScreenScene ss;
   ss.world = &scene.vertices;
   const int k = M.k = ss.scale_exp = screen_scale(scene, used, view);

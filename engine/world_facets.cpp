@@ -367,4 +367,16 @@ std::array<std::uint32_t, 3> spanning_ids(const Scene& scene, const WorldFacet& 
 }
 
 
+void number_by_first_use(const WorldFacets& wf, std::size_t nvertices, std::vector<std::uint32_t>& used,
+                         std::vector<std::uint32_t>& local) {
+  local.assign(nvertices, ~0u);
+  used.clear();
+  for (const auto& f : wf.facets)
+    for (auto id : f.v)
+      if (local[id] == ~0u) {
+        local[id] = static_cast<std::uint32_t>(used.size());
+        used.push_back(id);
+      }
+}
+
 }  // namespace vismap::engine

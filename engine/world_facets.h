@@ -51,4 +51,11 @@ std::array<std::uint32_t, 3> spanning_ids(const Scene& scene, const WorldFacet& 
 // Throws InputError for a face with holes that is not what Scene allows.
 WorldFacets make_world_facets(const Scene& scene, int threads = 1);
 
+// The vertices the facets use, in the order they first use them: used[k] is
+// the k-th one's input id, local[id] its place in used (~0u where unused), for
+// each of nvertices input vertices. (Where facets lie in screen order, what is
+// stored at these places is read nearly in sequence.)
+void number_by_first_use(const WorldFacets& wf, std::size_t nvertices, std::vector<std::uint32_t>& used,
+                         std::vector<std::uint32_t>& local);
+
 }  // namespace vismap::engine

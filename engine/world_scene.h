@@ -22,4 +22,21 @@ struct WorldScene {
 
 WorldScene make_world_scene(const Scene& scene, int threads = 1);
 
+// The edge pieces of wf and the closed components and height fields they make.
+// A surface that vertex pairs alone may match (pieces_of_vertex_pairs: a disk
+// of triangles) is matched so first; if those pieces make every facet one
+// height field, its certificate says that the surface's projection is one to
+// one, so no vertex lies inside an edge, and they are the pieces. Else the
+// edges are matched geometrically (match_edges_ranked). The same pieces either
+// way, and so the same maps. local, nused: the vertices numbered in the order
+// wf's facets first use them (number_by_first_use). Ranks only where `ranked`
+// (else edges.rank may be empty).
+struct MatchedSolids {
+  MatchedEdges edges;
+  ClosedComponents closed;
+  std::vector<int> height_field;
+};
+MatchedSolids match_edges_and_solids(const Scene& scene, const WorldFacets& wf, const std::vector<std::uint32_t>& local,
+                                     std::size_t nused, bool ranked, int threads = 1);
+
 }  // namespace vismap::engine

@@ -576,6 +576,63 @@ TEST(Views, EachViewIsASingleRunsMap) {
                                     {"--dir", "-1,0,0"}, {"--dir", "0,-1,0"}, {"--dir", "1,0,0"}, {"--dir", "0,1,0"}}));
 }
 
+// A terrain, and the same with a vertex inside a neighbour's edge (a
+// T-junction) and a triangle apart: a single run matches a terrain's edges by vertex pairs where
+// its height field's certificate allows (engine/edge_pieces.h), the views of
+// --views geometrically (for the world scene they share): the same maps, in
+// oblique, perspective (the near plane cutting) and lines-only drawings.
+TEST(Views, ATerrainMatchedByVertexPairsIsTheSameMap) {
+  TempDir dir("views_terrain");
+  vismap::Scene plain = vismap::gen::terrain(12, 3), split = plain;
+  // (The square at (5, 5) of 12 x 12: its lower edge's midpoint joins the triangle below it.)
+  const auto id = [](std::uint32_t i, std::uint32_t j) { return j * 13 + i; };
+  const std::uint32_t a = id(5, 5), b = id(6, 5);
+  split.vertices.push_back({(split.vertices[a].x + split.vertices[b].x) / 2, split.vertices[a].y,
+                            (split.vertices[a].z + split.vertices[b].z) / 2});
+  const auto m = static_cast<std::uint32_t>(split.vertices.size() - 1);
+  std::size_t replaced = 0;
+  for (std::size_t f = 0; f < split.faces.size() && replaced == 0; ++f) {
+    auto v = split.faces[f];
+    const bool has_edge = std::count(v.begin(), v.end(), a) && std::count(v.begin(), v.end(), b);
+    if (!has_edge || !std::all_of(v.begin(), v.end(), [&](std::uint32_t w) { return split.vertices[w].y <= split.vertices[a].y; }))
+      continue;
+    // (Its corners turned so that the edge a -> b or b -> a comes first.)
+    while (!((v[0] == a && v[1] == b) || (v[0] == b && v[1] == a))) std::rotate(v.begin(), v.begin() + 1, v.end());
+    split.faces[f] = {v[0], m, v[2]};
+    split.faces.push_back({m, v[1], v[2]});
+    ++replaced;
+  }
+  ASSERT_EQ(replaced, 1u);
+  // (And a triangle apart, so that V - E + F = 1 again: vertex pairs match the
+  // scene, and only the certificate finds the T-junction.)
+  const auto far = static_cast<std::uint32_t>(split.vertices.size());
+  split.vertices.insert(split.vertices.end(), {{0.2, 1.5, 0}, {0.3, 1.5, 0}, {0.2, 1.6, 0.05}});
+  split.faces.push_back({far, far + 1, far + 2});
+  const std::string views = dir.write("views.txt", "--dir -1,-2,-3\n--eye 0.5,-0.2,0.12 --target 0.5,0.6,0 --fov 90\n");
+  for (const auto& [name, scene] : {std::pair("plain", &plain), std::pair("split", &split)}) {
+    SCOPED_TRACE(name);
+    const std::string off = dir.write(std::string(name) + ".off", vismap::gen::to_off(*scene));
+    for (const std::vector<std::string>& extra : {std::vector<std::string>{"--hidden"}, {"--crease", "10", "--no-regions"}}) {
+      std::vector<std::string> argv = {kBin, off, "--views", views, "--json", dir.file("v%d.json")};
+      argv.insert(argv.end(), extra.begin(), extra.end());
+      const Result r = vismap_test::run(argv, dir.path());
+      ASSERT_EQ(r.status, 0) << both(r);
+      const auto cameras = cameras_run(r.err);
+      ASSERT_EQ(cameras.size(), 2u) << both(r);
+      for (std::size_t k = 0; k < cameras.size(); ++k) {
+        std::vector<std::string> one = {kBin, off, "--json", dir.file("one.json")};
+        one.insert(one.end(), extra.begin(), extra.end());
+        one.insert(one.end(), cameras[k].begin(), cameras[k].end());
+        const Result s = vismap_test::run(one, dir.path());
+        ASSERT_EQ(s.status, 0) << both(s);
+        const std::string single = vismap_test::slurp(dir.file("one.json"));
+        EXPECT_NE(single.find("\"segments\""), std::string::npos);
+        EXPECT_TRUE(vismap_test::slurp(dir.file("v" + std::to_string(k) + ".json")) == single) << k;   // (maps: long)
+      }
+    }
+  }
+}
+
 // On several threads, the views of a small scene run side by side (one thread
 // each here) and write what one view at a time writes, byte for byte, for
 // every engine and output; progress in the views' order, each view's
