@@ -170,6 +170,7 @@ std::vector<int> height_field_components(const Scene& scene, const WorldFacets& 
   std::vector<Tally> tally(ncomp);
   std::vector<char> ok(ncomp, 1);
   std::vector<int> owner(nv, -1);   // the component using a vertex (-2: several)
+  const bool estimated = wf.normals.size() == n;
   for (std::size_t f = 0; f < n; ++f) {
     const std::uint32_t c = comp[f];
     Tally& t = tally[c];
@@ -177,8 +178,14 @@ std::vector<int> height_field_components(const Scene& scene, const WorldFacets& 
     const auto& v = corners(f);
     if (v.size() != 3) ok[c] = 0;
     else {
-      const auto nf = world::normal_of<double>(world[v[0]], world[v[1]], world[v[2]]);   // (only the axis depends on it)
-      for (std::size_t k = 0; k < 3; ++k) t.normal[k] += nf[k];
+      // (Only the axis depends on it: the facets' unit normals where estimated,
+      // read in sequence, not their corners, a cache miss each.)
+      if (estimated) {
+        for (std::size_t k = 0; k < 3; ++k) t.normal[k] += wf.normals[f].n[k];
+      } else {
+        const auto nf = world::normal_of<double>(world[v[0]], world[v[1]], world[v[2]]);
+        for (std::size_t k = 0; k < 3; ++k) t.normal[k] += nf[k];
+      }
     }
     for (const std::uint32_t id : corners(f)) {
       if (owner[id] == -1) {
@@ -250,8 +257,14 @@ std::vector<int> height_field_components(const Scene& scene, const WorldFacets& 
   // per vertex, which stops at 2.)
   std::vector<char> bad(n, 0);
   std::vector<std::uint8_t> round(nv, 0);
+  const bool shared = threads > 1;
   parallel_chunks(static_cast<int>(n), 8192, threads, [&](int, Chunk r) {
     for (auto f = static_cast<std::size_t>(r.begin); f < static_cast<std::size_t>(r.end); ++f) {
+      // (The corners of a facet some places ahead asked for now: each is a
+      // cache miss, facets and vertices lying in different orders.)
+      constexpr std::size_t ahead = 8;
+      if (f + ahead < static_cast<std::size_t>(r.end))
+        for (const std::uint32_t id : corners(f + ahead)) __builtin_prefetch(&world[id]);
       const std::uint32_t c = comp[f];
       if (!ok[c]) continue;
       const auto& v = corners(f);
@@ -264,6 +277,10 @@ std::vector<int> height_field_components(const Scene& scene, const WorldFacets& 
       for (std::size_t k = 0; k < 3; ++k) {
         const double y = p[k].y();
         if (border_count[v[k]] != 0 || !(p[(k + 1) % 3].y() <= y && p[(k + 2) % 3].y() > y)) continue;
+        if (!shared) {   // (one thread: no locked instruction, 1.5 M of them on a 10^6-triangle terrain)
+          round[v[k]] = static_cast<std::uint8_t>(std::min(round[v[k]] + 1, 2));
+          continue;
+        }
         std::atomic_ref<std::uint8_t> count(round[v[k]]);
         std::uint8_t was = count.load(std::memory_order_relaxed);
         while (was < 2 && !count.compare_exchange_weak(was, static_cast<std::uint8_t>(was + 1), std::memory_order_relaxed)) {
