@@ -599,6 +599,10 @@ std::optional<std::vector<WorldPiece>> pieces_of_vertex_pairs(const Scene& scene
                                                                std::size_t nused) {
   const std::size_t nf = wf.facets.size();
   if (nf == 0 || nf >= (std::size_t{1} << 28)) return std::nullopt;   // (3 nf fits in 30 bits)
+  // (A disk's pairs E of which B are one edge's: 3 F = 2 E - B, and V - E + F = 1,
+  // so B = 2 V - F - 2, and a height field's boundary has 3 pieces or more. A
+  // closed surface, B = 0, leaves here before any pair is made: 2 V - F <= 4.)
+  if (2 * nused < nf + 5) return std::nullopt;
   for (const WorldFacet& f : wf.facets)
     if (f.v.size() != 3) return std::nullopt;
   auto numbers = [&](std::size_t f) {
