@@ -52,9 +52,9 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
 // (engine/height_fields.h: its projection is one to one): the caller must know
 // that. Only for facets that are all triangles, no two vertices joined by more
 // than two facet edges, V - E + F = 1 and three pieces or more of one facet
-// (a disk's counts, the only surface that certificate passes); else nullopt. Each piece as match_edges gives it;
-// in the order of their first sharing facet, then of their vertex pairs (their
-// ranks, vertex_pair_ranks). local[id]: input vertex id's number in the order
+// (a disk's counts, the only surface that certificate passes); else nullopt.
+// Each piece as match_edges gives it; in the order of their first sharing
+// facet, then of their vertex pairs (their ranks, vertex_pair_ranks). local[id]: input vertex id's number in the order
 // the facets first use them (number_by_first_use), nused of them; a pair's
 // edges are then found near each other in memory.
 std::optional<std::vector<WorldPiece>> pieces_of_vertex_pairs(const Scene& scene, const WorldFacets& wf,

@@ -1110,14 +1110,15 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   // `used`, not at its input index, so that facets and curves read their
   // vertices nearly in sequence.
   number_by_first_use(M.wf, scene.vertices.size(), M.used, M.local);
+  // (Matched here where no world scene brought the pieces; the closed
+  // components and height fields only where facets are culled.)
   if (!world && cull) {
     MatchedSolids m = match_edges_and_solids(scene, M.wf, M.local, M.used.size(), /*ranked=*/false, threads);
     M.pieces = std::move(m.edges.pieces);
     closed = std::move(m.closed);
     height_field = std::move(m.height_field);
-  } else if (!world) {
-    M.pieces = match_edges(scene, M.wf, /*cell_bits=*/20, threads);
   }
+  if (!world && !cull) M.pieces = match_edges(scene, M.wf, /*cell_bits=*/20, threads);
   WorldFacets& wf = M.wf;
   std::vector<WorldPiece>& pieces = M.pieces;
   stats.count("faces_degenerate_dropped", wf.degenerate);
