@@ -399,13 +399,17 @@ TEST(HeightFields, ComponentsSharingAVertexAreNot) {
 }  // namespace
 
 // The screen order's radix sort: positions by key, ties in position order, as a
-// stable comparison sort gives them (keys with many ties, in both 16-bit halves),
-// whatever the thread count (each pass's parts counted and placed side by side).
+// stable comparison sort gives them (keys with many ties, in each of its three
+// 11-bit digits, and some keys of any 32 bits), whatever the thread count (each
+// pass's parts counted and placed side by side).
 TEST(ScreenOrder, RadixOrderIsTheStableSortsOrder) {
   std::mt19937 rng(5);
   for (std::size_t n : {0u, 1u, 7u, 100000u, 300001u}) {
     std::vector<std::uint32_t> key(n);
-    for (auto& k : key) k = (rng() % 50) << (rng() % 2 ? 16 : 3) | (rng() % 3);
+    for (auto& k : key) {
+      const int shift[] = {3, 13, 24};
+      k = rng() % 16 == 0 ? static_cast<std::uint32_t>(rng()) : (rng() % 50) << shift[rng() % 3] | (rng() % 3);
+    }
     std::vector<std::uint32_t> want(n);
     std::iota(want.begin(), want.end(), 0u);
     std::stable_sort(want.begin(), want.end(), [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
