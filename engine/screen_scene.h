@@ -260,6 +260,12 @@ inline bool occluders_in_one_solid(const ScreenScene& ss) {
   return true;
 }
 
+// Whether world facets already walk the screen in their own order (a terrain's
+// grid rows, a scanned mesh's strips): make_screen_scene then keeps their order
+// for a lines-only drawing rather than sorting them along a Morton curve. Told
+// from a sample of consecutive pairs; false under 2^16 facets (screen_scene.cpp).
+bool walk_the_screen(const WorldFacets& wf, const Scene& scene, const View& view);
+
 // With `latent`, curves that are not drawn are left latent (a lines-only drawing
 // needs only those near a drawn one: most of a smooth mesh's edges are not).
 // Without `cull`, back faces of closed solids stay occluders and their edges

@@ -29,6 +29,7 @@
 #include "engine/franklin_grid.h"
 #include "engine/lazy_leaves.h"
 #include "engine/parallel.h"
+#include "engine/screen_scene.h"
 #include "engine/union_find.h"
 #include "engine/world_exact.h"
 #include "engine/world_facets.h"
@@ -987,6 +988,58 @@ TEST(Threads, SameMapForEveryThreadCount) {
   }
 }
 
+// ---- the screen order: the map does not depend on it ------------------------------------
+
+// A map with its faces named anew (name[face]) and its regions and segments
+// sorted, as JSON without counters: two scenes that list the same faces in
+// other orders then give the same text.
+std::string json_named(vismap::VisibilityMap map, const std::vector<std::uint32_t>& name) {
+  for (vismap::Region& r : map.regions) r.face = static_cast<int>(name[static_cast<std::size_t>(r.face)]);
+  for (vismap::Segment& g : map.segments) {
+    for (int& f : g.faces) f = static_cast<int>(name[static_cast<std::size_t>(f)]);
+    std::sort(g.faces.begin(), g.faces.end());
+  }
+  std::sort(map.regions.begin(), map.regions.end(), [](const vismap::Region& a, const vismap::Region& b) {
+    return std::tie(a.outer, a.holes, a.face) < std::tie(b.outer, b.holes, b.face);
+  });
+  std::sort(map.segments.begin(), map.segments.end(), [](const vismap::Segment& a, const vismap::Segment& b) {
+    return std::tie(a.from, a.to, a.kind, a.faces) < std::tie(b.from, b.to, b.kind, b.faces);
+  });
+  map.stats = {};
+  return vismap::to_json(map);
+}
+
+// Facets in a terrain's grid rows walk the screen: a lines-only map keeps their
+// order, where the same facets shuffled are sorted along a Morton curve (and a
+// smaller terrain's always are). The two orders give one map: the shuffled
+// scene's, its faces named back, is the rows' (the segments of a lines-only
+// map; and a whole map's regions and segments, the rows sorted too).
+TEST(ScreenOrder, FacetsThatWalkTheScreenKeepTheirOrderAndGiveTheSameMap) {
+  const vismap::Scene rows = vismap::gen::terrain(182, 3);   // (2 x 182^2 triangles: over 2^16)
+  ASSERT_GE(rows.faces.size(), std::size_t{1} << 16);
+  std::vector<std::uint32_t> old_of(rows.faces.size()), same(rows.faces.size());
+  std::iota(old_of.begin(), old_of.end(), 0u);
+  std::iota(same.begin(), same.end(), 0u);
+  std::shuffle(old_of.begin(), old_of.end(), std::mt19937(7));
+  vismap::Scene shuffled = rows;
+  for (std::size_t k = 0; k < old_of.size(); ++k) shuffled.faces[k] = rows.faces[old_of[k]];
+  const vismap::View view = vismap::make_view(ortho({-1, -2, -3}), rows);
+  EXPECT_TRUE(vismap::engine::walk_the_screen(vismap::engine::make_world_facets(rows), rows, view));
+  EXPECT_FALSE(vismap::engine::walk_the_screen(vismap::engine::make_world_facets(shuffled), shuffled, view));
+  const vismap::Scene small = vismap::gen::terrain(100, 3);
+  EXPECT_FALSE(vismap::engine::walk_the_screen(vismap::engine::make_world_facets(small), small,
+                                               vismap::make_view(ortho({-1, -2, -3}), small)));
+  for (const bool regions : {true, false}) {
+    vismap::Options opt;
+    opt.regions = regions;
+    opt.crease_deg = 10;
+    const std::string want = json_named(vismap::visibility_franklin(rows, view, opt), same);
+    ASSERT_NE(want.find("\"segments\""), std::string::npos);
+    EXPECT_EQ(json_named(vismap::visibility_franklin(shuffled, view, opt), old_of), want)
+        << (regions ? "full map" : "lines only");
+  }
+}
+
 // Sets joined from four threads at once: each element's root is the least member
 // of its set (the components' numbers and lowest vertices rely on it), the sets
 // those of the same joins made one by one.
@@ -1311,9 +1364,13 @@ TEST(Runtime, FreedMemoryIsReusedInTheExecutable) {
   std::ifstream overcommit("/proc/sys/vm/overcommit_memory");
   int mode = 0;
   if ((overcommit >> mode) && mode == 2) GTEST_SKIP() << "the kernel counts every mapping: no reservation made";
-  // A terrain of 2 x 449^2 triangles (~200 MB at the peak), its lines-only drawing.
+  // A terrain of 2 x 449^2 triangles (~200 MB at the peak), its lines-only
+  // drawing, its faces shuffled: the drawing then sorts them along a Morton
+  // curve (a terrain's rows it keeps), freeing the blocks the sorted ones replace.
   const vismap_test::TempDir dir("reuse");
-  const std::string off = dir.write("terrain.off", vismap::gen::to_off(vismap::gen::terrain(449, 5)));
+  vismap::Scene terrain = vismap::gen::terrain(449, 5);
+  std::shuffle(terrain.faces.begin(), terrain.faces.end(), std::mt19937(5));
+  const std::string off = dir.write("terrain.off", vismap::gen::to_off(terrain));
   auto touched_per_peak = [&](std::vector<std::string> env) {
     std::vector<std::string> argv = {"/usr/bin/env", "-u", "MIMALLOC_RESERVE_OS_MEMORY", "MIMALLOC_LARGE_OS_PAGES=0"};
     argv.insert(argv.end(), env.begin(), env.end());
