@@ -24,11 +24,11 @@ inline std::uint32_t morton(double u, double v) {
 
 // The positions 0..n-1 ordered by key[i], ties in position order: a stable
 // LSD radix sort of (key, position) pairs packed in 64 bits, three passes of
-// 11 key bits, each pass's parts counted and placed side by side on `threads`
-// threads. (2^11 buckets a pass keep the places written to in cache: two
-// passes of 2^16 took ~6 times as long on 10^6 facets, their writes scattered
-// over 2^16 places and their second pass gathering keys; a comparison sort
-// of the pairs gives the same order at about ten times the cost.)
+// 11 key bits, each a counted_placement on `threads` threads. (2^11 buckets a
+// pass keep the places written to in cache: two passes of 2^16 took ~6 times
+// as long on 10^6 facets, their writes scattered over 2^16 places and their
+// second pass gathering keys; a comparison sort of the pairs gives the same
+// order at about ten times the cost.)
 inline std::vector<std::uint32_t> order_by_key(const std::vector<std::uint32_t>& key, int threads) {
   const int n = static_cast<int>(key.size());
   auto at = [](int i) { return static_cast<std::size_t>(i); };
@@ -38,30 +38,11 @@ inline std::vector<std::uint32_t> order_by_key(const std::vector<std::uint32_t>&
   });
   constexpr int kDigit = 11;
   constexpr std::size_t kBuckets = std::size_t{1} << kDigit;
-  const int parts = std::max(1, std::min(threads, n / 16384));
-  auto part = [&](int k) { return Chunk{static_cast<int>(static_cast<long>(n) * k / parts),
-                                        static_cast<int>(static_cast<long>(n) * (k + 1) / parts)}; };
-  std::vector<std::vector<std::uint32_t>> next(static_cast<std::size_t>(parts), std::vector<std::uint32_t>(kBuckets));
   for (int shift = 32; shift < 64; shift += kDigit) {
-    auto digit = [&](std::uint64_t p) { return static_cast<std::size_t>(p >> shift) & (kBuckets - 1); };
-    parallel_for(parts, threads, [&](int k) {
-      std::vector<std::uint32_t>& count = next[at(k)];
-      std::fill(count.begin(), count.end(), 0u);
-      const Chunk r = part(k);
-      for (int i = r.begin; i < r.end; ++i) ++count[digit(pairs[at(i)])];
-    });
-    std::uint32_t first = 0;   // (bucket by bucket, each part's items after the parts' before)
-    for (std::size_t b = 0; b < kBuckets; ++b)
-      for (std::vector<std::uint32_t>& count : next) {
-        const std::uint32_t here = count[b];
-        count[b] = first;
-        first += here;
-      }
-    parallel_for(parts, threads, [&](int k) {
-      std::vector<std::uint32_t>& place = next[at(k)];
-      const Chunk r = part(k);
-      for (int i = r.begin; i < r.end; ++i) placed[place[digit(pairs[at(i)])]++] = pairs[at(i)];
-    });
+    counted_placement(
+        n, kBuckets, threads,
+        [&](int i, auto&& visit) { visit(static_cast<std::size_t>(pairs[at(i)] >> shift) & (kBuckets - 1)); },
+        [](std::uint32_t) {}, [&](int i, std::uint32_t slot) { placed[slot] = pairs[at(i)]; });
     pairs.swap(placed);
   }
   std::vector<std::uint64_t>().swap(placed);

@@ -211,16 +211,16 @@ void parallel_chunks(int n, int size, int threads, Body&& body) {
   parallel_for(chunk_count(n, size), threads, [&](int k) { body(k, chunk(k, n, size)); });
 }
 
-// Items [0, n) listed by bucket, in compressed rows: each_bucket(i, visit)
-// calls visit(b) for each bucket b item i goes in. A bucket lists its items in
-// item order, as one pass would; parts of the items are counted, then placed,
-// side by side on `threads` threads, each part's items after the parts' before.
-struct Buckets {
-  std::vector<std::uint32_t> first;   // bucket b's items: items[first[b] .. first[b + 1])
-  std::vector<std::uint32_t> items;
-};
-template <class EachBucket>
-Buckets bucket_items(int n, std::size_t buckets, int threads, EachBucket&& each_bucket) {
+// Items [0, n) placed bucket by bucket, stably, in two passes over parts of
+// the items side by side on `threads` threads: each_bucket(i, visit) calls
+// visit(b) for each bucket b item i goes in; the first pass counts each part's
+// items per bucket, make_room(total) then sizes the caller's output, and the
+// second pass calls place(i, slot) for each of item i's buckets: bucket b's
+// items take slots first[b] .. first[b + 1] in item order, each part's after
+// the parts' before, as one pass would. Returns first (buckets + 1 entries).
+template <class EachBucket, class MakeRoom, class Place>
+std::vector<std::uint32_t> counted_placement(int n, std::size_t buckets, int threads, EachBucket&& each_bucket,
+                                             MakeRoom&& make_room, Place&& place) {
   const int parts = std::max(1, std::min(threads, n / 16384));
   auto part = [&](int k) {
     auto at = [&](int j) { return static_cast<int>(static_cast<long>(n) * j / parts); };
@@ -234,24 +234,38 @@ Buckets bucket_items(int n, std::size_t buckets, int threads, EachBucket&& each_
     for (int i = r.begin; i < r.end; ++i) each_bucket(i, [&](std::size_t b) { ++count[b]; });
     next[static_cast<std::size_t>(k)] = std::move(count);
   });
-  Buckets out;
-  out.first.assign(buckets + 1, 0);
+  std::vector<std::uint32_t> first(buckets + 1, 0);
   for (std::size_t b = 0; b < buckets; ++b) {
-    std::uint32_t at = out.first[b];
+    std::uint32_t at = first[b];
     for (std::vector<std::uint32_t>& count : next) {
       const std::uint32_t here = count[b];
       count[b] = at;
       at += here;
     }
-    out.first[b + 1] = at;
+    first[b + 1] = at;
   }
-  out.items.resize(out.first[buckets]);
+  make_room(first[buckets]);
   parallel_for(parts, threads, [&](int k) {
     std::vector<std::uint32_t>& at = next[static_cast<std::size_t>(k)];
     const Chunk r = part(k);
-    for (int i = r.begin; i < r.end; ++i)
-      each_bucket(i, [&](std::size_t b) { out.items[at[b]++] = static_cast<std::uint32_t>(i); });
+    for (int i = r.begin; i < r.end; ++i) each_bucket(i, [&](std::size_t b) { place(i, at[b]++); });
   });
+  return first;
+}
+
+// Items [0, n) listed by bucket, in compressed rows: each_bucket(i, visit) calls
+// visit(b) for each bucket b item i goes in. A bucket lists its items in item
+// order (counted_placement).
+struct Buckets {
+  std::vector<std::uint32_t> first;   // bucket b's items: items[first[b] .. first[b + 1])
+  std::vector<std::uint32_t> items;
+};
+template <class EachBucket>
+Buckets bucket_items(int n, std::size_t buckets, int threads, EachBucket&& each_bucket) {
+  Buckets out;
+  out.first = counted_placement(
+      n, buckets, threads, each_bucket, [&](std::uint32_t total) { out.items.resize(total); },
+      [&](int i, std::uint32_t slot) { out.items[slot] = static_cast<std::uint32_t>(i); });
   return out;
 }
 
