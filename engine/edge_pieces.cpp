@@ -596,7 +596,7 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
 
 std::optional<std::vector<WorldPiece>> pieces_of_vertex_pairs(const Scene& scene, const WorldFacets& wf,
                                                                const std::vector<std::uint32_t>& local,
-                                                               std::size_t nused) {
+                                                               std::size_t nused, int threads) {
   const std::size_t nf = wf.facets.size();
   if (nf == 0 || nf >= (std::size_t{1} << 28)) return std::nullopt;   // (3 nf fits in 30 bits)
   // (A disk's pairs E of which B are one edge's: 3 F = 2 E - B, and V - E + F = 1,
@@ -605,85 +605,107 @@ std::optional<std::vector<WorldPiece>> pieces_of_vertex_pairs(const Scene& scene
   if (2 * nused < nf + 5) return std::nullopt;
   for (const WorldFacet& f : wf.facets)
     if (f.v.size() != 3) return std::nullopt;
-  auto numbers = [&](std::size_t f) {
-    const auto& v = wf.facets[f].v;
-    return std::array<std::uint32_t, 3>{local[v[0]], local[v[1]], local[v[2]]};
+  // Facet edge e = 3 f + i: the numbers of its ends, from v[i] to v[i + 1].
+  auto ends = [&](std::size_t e) {
+    const auto& v = wf.facets[e / 3].v;
+    const std::size_t i = e % 3;
+    return std::pair{local[v[i]], local[v[(i + 1) % 3]]};
   };
-  const auto nedges = static_cast<std::uint32_t>(3 * nf);
-  // Each facet edge under the lower of its ends' numbers (a counting sort,
-  // stable: in facet order), as its higher end's number, its place (3 facet +
-  // edge) and whether it runs from the lower end.
+  const auto nedges = static_cast<int>(3 * nf);
+  // Each facet edge under the lower of its ends' numbers (stable: in facet
+  // order), as its higher end's number, its place e and whether it runs from
+  // the lower end.
   struct Half {
     std::uint32_t hi;
     std::uint32_t at : 31;
     std::uint32_t from_lo : 1;
   };
-  std::vector<std::uint32_t> first(nused + 1, 0);   // lower end v's halves: half[first[v] .. first[v+1])
-  for (std::size_t f = 0; f < nf; ++f) {
-    const auto n = numbers(f);
-    for (int i = 0; i < 3; ++i) ++first[std::min(n[i], n[(i + 1) % 3]) + 1];
-  }
-  for (std::size_t v = 0; v < nused; ++v) first[v + 1] += first[v];
-  std::vector<Half> half(nedges);
-  {
-    std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
-    for (std::size_t f = 0; f < nf; ++f) {
-      const auto n = numbers(f);
-      for (std::uint32_t i = 0; i < 3; ++i) {
-        const std::uint32_t p = n[i], q = n[(i + 1) % 3];
-        half[next[std::min(p, q)]++] = Half{std::max(p, q), static_cast<std::uint32_t>(3 * f) + i, p < q};
-      }
-    }
-  }
+  std::vector<Half> half;   // lower end v's halves: half[first[v] .. first[v + 1])
+  const std::vector<std::uint32_t> first = counted_placement(
+      nedges, nused, threads,
+      [&](int e, auto&& visit) {
+        const auto [p, q] = ends(static_cast<std::size_t>(e));
+        visit(std::min(p, q));
+      },
+      [&](std::uint32_t total) { half.resize(total); },
+      [&](int e, std::uint32_t slot) {
+        const auto [p, q] = ends(static_cast<std::size_t>(e));
+        half[slot] = Half{std::max(p, q), static_cast<std::uint32_t>(e), p < q};
+      });
   // Each lower end's halves by their higher end (stable: a pair's in facet
   // order, side by side). Per facet edge, where its pair's halves start, with
-  // whether it is the first of them and whether there are two.
+  // whether it is the first of them and whether there are two. (Chunks of
+  // lower ends side by side: each writes its own halves' places.)
   constexpr std::uint32_t kTwo = 1u << 31, kFirst = 1u << 30, kStart = kFirst - 1;
-  std::vector<std::uint32_t> pair_at(nedges);
-  std::size_t npairs = 0;
-  for (std::size_t v = 0; v < nused; ++v) {
-    const std::uint32_t b = first[v], e = first[v + 1];
-    for (std::uint32_t i = b + 1; i < e; ++i)
-      for (std::uint32_t j = i; j > b && half[j].hi < half[j - 1].hi; --j) std::swap(half[j], half[j - 1]);
-    for (std::uint32_t i = b; i < e;) {
-      std::uint32_t j = i + 1;
-      while (j < e && half[j].hi == half[i].hi) ++j;
-      if (j - i > 2) return std::nullopt;   // (three facets on one edge: no disk)
-      for (std::uint32_t k = i; k < j; ++k) pair_at[half[k].at] = i | (j - i == 2 ? kTwo : 0) | (k == i ? kFirst : 0);
-      ++npairs;
-      i = j;
-    }
-  }
-  if (nused + nf != npairs + 1) return std::nullopt;   // (V - E + F != 1)
-  // Facet by facet, the pieces whose first facet edge it holds, by their
-  // vertex pairs (their ranks: vertex_pair_ranks).
-  std::vector<WorldPiece> pieces;
-  pieces.reserve(npairs);
-  for (std::size_t f = 0; f < nf; ++f) {
-    const auto& v = wf.facets[f].v;
-    std::array<std::uint32_t, 3> mine{};
-    std::size_t k = 0;
-    for (std::uint32_t i = 0; i < 3; ++i)
-      if (pair_at[3 * f + i] & kFirst) mine[k++] = i;
-    auto pair_of = [&](std::uint32_t i) { return std::minmax(v[i], v[(i + 1) % 3]); };
-    for (std::size_t x = 1; x < k; ++x)   // (at most three)
-      for (std::size_t y = x; y > 0 && pair_of(mine[y]) < pair_of(mine[y - 1]); --y) std::swap(mine[y], mine[y - 1]);
-    for (std::size_t m = 0; m < k; ++m) {
-      const std::uint32_t i = mine[m], at = static_cast<std::uint32_t>(3 * f) + i, s = pair_at[at] & kStart;
-      // (From its lower end to its higher in (x, y, z) order, as match_edges
-      // runs a piece: up the first axis along which its ends differ.)
-      const std::uint32_t p = v[i], q = v[(i + 1) % 3];
-      const bool up = line_dir(scene.vertices[p], scene.vertices[q]).up;
-      WorldPiece& piece = pieces.emplace_back(WorldPiece{up ? p : q, up ? q : p, {}});
-      piece.sharers.push_back(Sharer{static_cast<int>(f), i, up});
-      if (pair_at[at] & kTwo) {
-        const Half& other = half[s + 1];
-        const bool same_way = other.from_lo == half[s].from_lo;
-        piece.sharers.push_back(Sharer{static_cast<int>(other.at / 3), static_cast<std::uint32_t>(other.at % 3),
-                                       same_way == up});
+  std::vector<std::uint32_t> pair_at(static_cast<std::size_t>(nedges));
+  const int vsize = 16384, vchunks = chunk_count(static_cast<int>(nused), vsize);
+  std::vector<std::size_t> pairs_in(static_cast<std::size_t>(vchunks), 0);
+  std::vector<char> three(static_cast<std::size_t>(vchunks), 0);
+  parallel_chunks(static_cast<int>(nused), vsize, threads, [&](int c, Chunk r) {
+    for (auto v = static_cast<std::size_t>(r.begin); v < static_cast<std::size_t>(r.end); ++v) {
+      const std::uint32_t b = first[v], e = first[v + 1];
+      for (std::uint32_t i = b + 1; i < e; ++i)
+        for (std::uint32_t j = i; j > b && half[j].hi < half[j - 1].hi; --j) std::swap(half[j], half[j - 1]);
+      for (std::uint32_t i = b; i < e;) {
+        std::uint32_t j = i + 1;
+        while (j < e && half[j].hi == half[i].hi) ++j;
+        if (j - i > 2) {   // (three facets on one edge: no disk)
+          three[static_cast<std::size_t>(c)] = 1;
+          return;
+        }
+        for (std::uint32_t k = i; k < j; ++k) pair_at[half[k].at] = i | (j - i == 2 ? kTwo : 0) | (k == i ? kFirst : 0);
+        ++pairs_in[static_cast<std::size_t>(c)];
+        i = j;
       }
     }
-  }
+  });
+  if (std::find(three.begin(), three.end(), 1) != three.end()) return std::nullopt;
+  std::size_t npairs = 0;
+  for (const std::size_t n : pairs_in) npairs += n;
+  if (nused + nf != npairs + 1) return std::nullopt;   // (V - E + F != 1)
+  // Facet by facet, the pieces whose first facet edge it holds, by their
+  // vertex pairs (their ranks: vertex_pair_ranks): chunks of facets side by
+  // side, each chunk's pieces after those of the chunks before.
+  const int fsize = 16384, fchunks = chunk_count(static_cast<int>(nf), fsize);
+  std::vector<std::size_t> start(static_cast<std::size_t>(fchunks) + 1, 0);
+  parallel_chunks(static_cast<int>(nf), fsize, threads, [&](int c, Chunk r) {
+    start[static_cast<std::size_t>(c) + 1] = static_cast<std::size_t>(
+        std::count_if(pair_at.begin() + 3 * r.begin, pair_at.begin() + 3 * r.end, [](std::uint32_t x) { return (x & kFirst) != 0; }));
+  });
+  for (std::size_t c = 0; c < static_cast<std::size_t>(fchunks); ++c) start[c + 1] += start[c];
+  std::vector<WorldPiece> pieces;
+  pieces.reserve(npairs);
+  fault_in_spare(pieces, npairs, threads);
+  pieces.resize(npairs);
+  parallel_chunks(static_cast<int>(nf), fsize, threads, [&](int c, Chunk r) {
+    std::size_t next = start[static_cast<std::size_t>(c)];
+    for (auto f = static_cast<std::size_t>(r.begin); f < static_cast<std::size_t>(r.end); ++f) {
+      const auto& v = wf.facets[f].v;
+      std::array<std::uint32_t, 3> mine{};
+      std::size_t k = 0;
+      for (std::uint32_t i = 0; i < 3; ++i)
+        if (pair_at[3 * f + i] & kFirst) mine[k++] = i;
+      auto pair_of = [&](std::uint32_t i) { return std::minmax(v[i], v[(i + 1) % 3]); };
+      for (std::size_t x = 1; x < k; ++x)   // (at most three)
+        for (std::size_t y = x; y > 0 && pair_of(mine[y]) < pair_of(mine[y - 1]); --y) std::swap(mine[y], mine[y - 1]);
+      for (std::size_t m = 0; m < k; ++m) {
+        const std::uint32_t i = mine[m], at = static_cast<std::uint32_t>(3 * f) + i, s = pair_at[at] & kStart;
+        // (From its lower end to its higher in (x, y, z) order, as match_edges
+        // runs a piece: up the first axis along which its ends differ.)
+        const std::uint32_t p = v[i], q = v[(i + 1) % 3];
+        const bool up = line_dir(scene.vertices[p], scene.vertices[q]).up;
+        WorldPiece& piece = pieces[next++];
+        piece = WorldPiece{up ? p : q, up ? q : p, {}};
+        piece.sharers.push_back(Sharer{static_cast<int>(f), i, up});
+        if (pair_at[at] & kTwo) {
+          const Half& other = half[s + 1];
+          const bool same_way = other.from_lo == half[s].from_lo;
+          piece.sharers.push_back(Sharer{static_cast<int>(other.at / 3), static_cast<std::uint32_t>(other.at % 3),
+                                         same_way == up});
+        }
+      }
+    }
+  });
   return pieces;
 }
 

@@ -54,12 +54,13 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
 // than two facet edges, V - E + F = 1 and three pieces or more of one facet
 // (a disk's counts, the only surface that certificate passes); else nullopt.
 // Each piece as match_edges gives it; in the order of their first sharing
-// facet, then of their vertex pairs (their ranks, vertex_pair_ranks). local[id]: input vertex id's number in the order
-// the facets first use them (number_by_first_use), nused of them; a pair's
-// edges are then found near each other in memory.
+// facet, then of their vertex pairs (their ranks, vertex_pair_ranks).
+// local[id]: input vertex id's number in the order the facets first use them
+// (number_by_first_use), nused of them; a pair's edges are then found near
+// each other in memory. On `threads` threads; the same pieces for any count.
 std::optional<std::vector<WorldPiece>> pieces_of_vertex_pairs(const Scene& scene, const WorldFacets& wf,
                                                                const std::vector<std::uint32_t>& local,
-                                                               std::size_t nused);
+                                                               std::size_t nused, int threads = 1);
 // The ranks of pieces_of_vertex_pairs' pieces: their vertex pairs (unique, and
 // the same whatever the facets' order, so that renumber_facets keeps them).
 std::vector<PieceRank> vertex_pair_ranks(const std::vector<WorldPiece>& pieces);

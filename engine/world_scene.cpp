@@ -34,7 +34,7 @@ MatchedSolids closed_and_height_fields(const Scene& scene, const WorldFacets& wf
 // terrain's 200 ms -> 55 ms.)
 MatchedSolids match_edges_and_solids(const Scene& scene, const WorldFacets& wf, const std::vector<std::uint32_t>& local,
                                      std::size_t nused, bool ranked, int threads) {
-  if (auto pairs = pieces_of_vertex_pairs(scene, wf, local, nused)) {
+  if (auto pairs = pieces_of_vertex_pairs(scene, wf, local, nused, threads)) {
     MatchedSolids m = closed_and_height_fields(scene, wf, MatchedEdges{std::move(*pairs), {}}, threads);
     const auto& label = m.height_field;
     if (std::all_of(label.begin(), label.end(), [&](int c) { return c >= 0 && c == label[0]; })) {

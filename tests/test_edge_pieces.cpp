@@ -380,6 +380,37 @@ TEST(EdgePieces, VertexPairsGiveMatchEdgesPiecesOnADisk) {
   EXPECT_GT(compared, 500);
 }
 
+// On threads, in parts and chunks (a sheet large enough for several of each:
+// 33 800 triangles, 17 161 vertices), the pieces one thread gives, which are
+// match_edges'.
+TEST(EdgePieces, VertexPairsAreTheSameOnEveryThreadCount) {
+  std::mt19937_64 rng(79);
+  const Scene scene = sheet(130, rng, bumps);
+  const WorldFacets wf = make_world_facets(scene);
+  const auto got = vertex_pair_pieces(scene, wf);
+  ASSERT_TRUE(got.has_value());
+  EXPECT_EQ(*got, engine_pieces(scene, wf, 20));
+  std::vector<std::uint32_t> used, local;
+  number_by_first_use(wf, scene.vertices.size(), used, local);
+  const auto one = pieces_of_vertex_pairs(scene, wf, local, used.size(), 1);
+  ASSERT_TRUE(one.has_value());
+  EXPECT_EQ(one->size(), used.size() + wf.facets.size() - 1);   // (E = V + F - 1)
+  for (int threads : {2, 3}) {
+    const auto many = pieces_of_vertex_pairs(scene, wf, local, used.size(), threads);
+    ASSERT_TRUE(many.has_value()) << threads;
+    ASSERT_EQ(many->size(), one->size()) << threads;
+    for (std::size_t i = 0; i < one->size(); ++i) {
+      const WorldPiece &x = (*one)[i], &y = (*many)[i];
+      ASSERT_EQ(std::pair(x.a, x.b), std::pair(y.a, y.b)) << i;
+      ASSERT_EQ(x.sharers.size(), y.sharers.size()) << i;
+      for (std::size_t k = 0; k < x.sharers.size(); ++k)
+        ASSERT_EQ(std::tuple(x.sharers[k].facet, std::uint32_t{x.sharers[k].edge}, std::uint32_t{x.sharers[k].forward}),
+                  std::tuple(y.sharers[k].facet, std::uint32_t{y.sharers[k].edge}, std::uint32_t{y.sharers[k].forward}))
+            << i;
+    }
+  }
+}
+
 // Nothing but a disk of triangles (V - E + F = 1, no edge of three) is matched
 // by vertex pairs: a closed surface, a ring, a quad, a fin, two sheets, and
 // sheets with a vertex inside a neighbour's edge (a T-junction: the slit it
