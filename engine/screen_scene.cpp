@@ -1251,6 +1251,11 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   auto facing_of = [&](std::size_t n, auto&& corner, auto&& id) {
     const CGAL::Sign s = filtered_sign(
         [&] {
+          if (n == 3) {   // (most facets: two products, each corner's intervals looked up once)
+            const P3 &a = corner(0), &b = corner(1), &c = corner(2);
+            const Interval ax = ss.x_of(a), ay = ss.y_of(a);
+            return (ss.x_of(b) - ax) * (ss.y_of(c) - ay) - (ss.x_of(c) - ax) * (ss.y_of(b) - ay);
+          }
           Interval area2 = 0;
           for (std::size_t k = 0; k < n; ++k) {
             const P3 &p = corner(k), &q = corner((k + 1) % n);
