@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstring>
 #include <exception>
+#include <optional>
 #include <stdexcept>
 
 #include "engine/holed_faces.h"
@@ -311,10 +312,48 @@ std::vector<world::UnitNormal> unit_normals(const Scene& scene, const std::vecto
   return normals;
 }
 
+// Where every face is a triangle of three distinct points not in a line (most
+// meshes): each face's one facet made in its place, as is_plain_triangle makes
+// it, with its unit normal (unit_normals'), on the threads: no chunk's facets
+// moved again. Nullopt where some face is not (the general path then).
+std::optional<WorldFacets> plain_triangle_facets(const Scene& scene, const std::vector<std::uint32_t>& canon,
+                                                 int threads) {
+  auto holed = [](const std::vector<IndexRing>& h) { return !h.empty(); };
+  auto not_triangle = [](const IndexRing& ring) { return ring.size() != 3; };
+  if (std::any_of(scene.holes.begin(), scene.holes.end(), holed) ||
+      std::any_of(scene.faces.begin(), scene.faces.end(), not_triangle))
+    return std::nullopt;
+  const int n = static_cast<int>(scene.faces.size()), size = 4096;
+  WorldFacets out;
+  out.facets.reserve(scene.faces.size());
+  fault_in_spare(out.facets, scene.faces.size(), threads);
+  out.facets.resize(scene.faces.size());
+  out.normals.resize(scene.faces.size());
+  std::vector<char> plain(static_cast<std::size_t>(chunk_count(n, size)), 1);
+  parallel_chunks(n, size, threads, [&](int k, Chunk r) {
+    for (int f = r.begin; f < r.end; ++f) {
+      const IndexRing& ring = scene.faces[static_cast<std::size_t>(f)];
+      const std::uint32_t a = canon[ring[0]], b = canon[ring[1]], c = canon[ring[2]];
+      const Vec3 &pa = scene.vertices[a], &pb = scene.vertices[b], &pc = scene.vertices[c];
+      if (a == b || b == c || c == a ||
+          CGAL::collinear(Q3(pa.x, pa.y, pa.z), Q3(pb.x, pb.y, pb.z), Q3(pc.x, pc.y, pc.z))) {
+        plain[static_cast<std::size_t>(k)] = 0;
+        return;
+      }
+      out.facets[static_cast<std::size_t>(f)] =
+          WorldFacet{f, true, false, {a, b, c}, {EdgeRole::Boundary, EdgeRole::Boundary, EdgeRole::Boundary}};
+      out.normals[static_cast<std::size_t>(f)] = world::unit_normal(pa, pb, pc);
+    }
+  });
+  if (std::find(plain.begin(), plain.end(), 0) != plain.end()) return std::nullopt;
+  return out;
+}
+
 }  // namespace
 
 WorldFacets make_world_facets(const Scene& scene, int threads) {
   const std::vector<std::uint32_t> canon = canonical_vertex_ids(scene, threads);
+  if (std::optional<WorldFacets> plain = plain_triangle_facets(scene, canon, threads)) return std::move(*plain);
   // Chunks of faces in parallel, joined in order (their counts beside them).
   const int nfaces = static_cast<int>(scene.faces.size()), size = 4096, chunks = chunk_count(nfaces, size);
   std::vector<WorldFacets> counts(static_cast<std::size_t>(chunks));
