@@ -1374,7 +1374,10 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   }
 
   M.look.resize(ss.facet_count());
-  for (std::size_t fi = 0; fi < ss.facet_count(); ++fi) M.look[fi] = CurveMaker::look_of(ss.brief(fi), wf.facets[fi]);
+  parallel_chunks(static_cast<int>(ss.facet_count()), 16384, threads, [&](int, Chunk r) {
+    for (auto fi = static_cast<std::size_t>(r.begin); fi < static_cast<std::size_t>(r.end); ++fi)
+      M.look[fi] = CurveMaker::look_of(ss.brief(fi), wf.facets[fi]);
+  });
 
   // Chunks of pieces in parallel, appended in piece order a wave of chunks at a
   // time (parallel_append): the curves are never held twice (curves made in
