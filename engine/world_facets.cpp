@@ -315,7 +315,9 @@ std::vector<world::UnitNormal> unit_normals(const Scene& scene, const std::vecto
 // Where every face is a triangle of three distinct points not in a line (most
 // meshes): each face's one facet made in its place, as is_plain_triangle makes
 // it, with its unit normal (unit_normals'), on the threads: no chunk's facets
-// moved again. Nullopt where some face is not (the general path then).
+// moved again. Nullopt where some face is not (the general path then). (Its
+// test written out here, not shared: through a shared function that fills a
+// slot or an optional, 10^6 triangles took 15-20 ms longer.)
 std::optional<WorldFacets> plain_triangle_facets(const Scene& scene, const std::vector<std::uint32_t>& canon,
                                                  int threads) {
   auto holed = [](const std::vector<IndexRing>& h) { return !h.empty(); };
