@@ -312,14 +312,15 @@ std::vector<world::UnitNormal> unit_normals(const Scene& scene, const std::vecto
   return normals;
 }
 
-// Where every face is a triangle of three distinct points not in a line (most
-// meshes): each face's one facet made in its place, as is_plain_triangle makes
-// it, with its unit normal (unit_normals'), on the threads: no chunk's facets
-// moved again. Nullopt where some face is not (the general path then). (Its
-// test written out here, not shared: through a shared function that fills a
-// slot or an optional, 10^6 triangles took 15-20 ms longer.)
-std::optional<WorldFacets> plain_triangle_facets(const Scene& scene, const std::vector<std::uint32_t>& canon,
-                                                 int threads) {
+// Where every face is a triangle (most meshes): each face's facet made in its
+// place, as is_plain_triangle makes it, with its unit normal (unit_normals'), on
+// the threads: no chunk's facets moved again. A triangle that is not plain (its
+// corners equal or in a line) is degenerate, as the general path finds it: its
+// slot is dropped afterwards, counted. Nullopt where some face is not a triangle
+// or has holes (the general path then). (The plain test is written out here,
+// not shared: through a function that fills a slot or an optional, 10^6
+// triangles took 15-20 ms longer.)
+std::optional<WorldFacets> triangle_facets(const Scene& scene, const std::vector<std::uint32_t>& canon, int threads) {
   auto holed = [](const std::vector<IndexRing>& h) { return !h.empty(); };
   auto not_triangle = [](const IndexRing& ring) { return ring.size() != 3; };
   if (std::any_of(scene.holes.begin(), scene.holes.end(), holed) ||
@@ -329,9 +330,9 @@ std::optional<WorldFacets> plain_triangle_facets(const Scene& scene, const std::
   WorldFacets out;
   out.facets.reserve(scene.faces.size());
   fault_in_spare(out.facets, scene.faces.size(), threads);
-  out.facets.resize(scene.faces.size());
+  out.facets.resize(scene.faces.size());   // (face -1: a slot left empty)
   out.normals.resize(scene.faces.size());
-  std::vector<char> plain(static_cast<std::size_t>(chunk_count(n, size)), 1);
+  std::vector<std::int64_t> degenerate(static_cast<std::size_t>(chunk_count(n, size)), 0);
   parallel_chunks(n, size, threads, [&](int k, Chunk r) {
     for (int f = r.begin; f < r.end; ++f) {
       const IndexRing& ring = scene.faces[static_cast<std::size_t>(f)];
@@ -339,15 +340,27 @@ std::optional<WorldFacets> plain_triangle_facets(const Scene& scene, const std::
       const Vec3 &pa = scene.vertices[a], &pb = scene.vertices[b], &pc = scene.vertices[c];
       if (a == b || b == c || c == a ||
           CGAL::collinear(Q3(pa.x, pa.y, pa.z), Q3(pb.x, pb.y, pb.z), Q3(pc.x, pc.y, pc.z))) {
-        plain[static_cast<std::size_t>(k)] = 0;
-        return;
+        ++degenerate[static_cast<std::size_t>(k)];
+        continue;
       }
       out.facets[static_cast<std::size_t>(f)] =
           WorldFacet{f, true, false, {a, b, c}, {EdgeRole::Boundary, EdgeRole::Boundary, EdgeRole::Boundary}};
       out.normals[static_cast<std::size_t>(f)] = world::unit_normal(pa, pb, pc);
     }
   });
-  if (std::find(plain.begin(), plain.end(), 0) != plain.end()) return std::nullopt;
+  for (const std::int64_t d : degenerate) out.degenerate += d;
+  if (out.degenerate == 0) return out;
+  std::size_t kept = 0;   // (the empty slots dropped, the others in order)
+  for (std::size_t f = 0; f < out.facets.size(); ++f) {
+    if (out.facets[f].face < 0) continue;
+    if (kept != f) {
+      out.facets[kept] = std::move(out.facets[f]);
+      out.normals[kept] = out.normals[f];
+    }
+    ++kept;
+  }
+  out.facets.resize(kept);
+  out.normals.resize(kept);
   return out;
 }
 
@@ -355,7 +368,7 @@ std::optional<WorldFacets> plain_triangle_facets(const Scene& scene, const std::
 
 WorldFacets make_world_facets(const Scene& scene, int threads) {
   const std::vector<std::uint32_t> canon = canonical_vertex_ids(scene, threads);
-  if (std::optional<WorldFacets> plain = plain_triangle_facets(scene, canon, threads)) return std::move(*plain);
+  if (std::optional<WorldFacets> triangles = triangle_facets(scene, canon, threads)) return std::move(*triangles);
   // Chunks of faces in parallel, joined in order (their counts beside them).
   const int nfaces = static_cast<int>(scene.faces.size()), size = 4096, chunks = chunk_count(nfaces, size);
   std::vector<WorldFacets> counts(static_cast<std::size_t>(chunks));

@@ -1267,34 +1267,36 @@ TEST(Threads, CanonicalVertexIdsAreTheLeastEqualVertex) {
 }
 
 // A mesh of triangles only has its facets made in place (each face's one facet,
-// its normal beside it): the same facets and normals, at every thread count, as
-// the general path makes them for the same faces once one face is not a plain
-// triangle (a quad after them, or a triangle whose corners are in a line).
-TEST(WorldFacets, PlainTrianglesAreMadeAsTheGeneralPathMakesThem) {
+// its normal beside it; a degenerate triangle's slot dropped): the same facets,
+// normals and counts, at every thread count, as the general path makes them for
+// the same faces once one face is not a triangle (a quad after them).
+TEST(WorldFacets, TrianglesAreMadeAsTheGeneralPathMakesThem) {
   const vismap::Scene mesh = vismap::gen::terrain(60, 3);   // (7 200 triangles: several chunks)
-  const std::size_t n = mesh.faces.size();
-  vismap::Scene with_quad = mesh, with_line = mesh;
-  with_quad.faces.push_back({0, 1, 62, 61});
+  vismap::Scene with_line = mesh;   // (a triangle whose corners are in a line, among the others)
   with_line.vertices.push_back({-7, -7, 0});
   with_line.vertices.push_back({-8, -8, 0});
   with_line.vertices.push_back({-9, -9, 0});
   const auto last = static_cast<std::uint32_t>(with_line.vertices.size() - 1);
-  with_line.faces.push_back({last - 2, last - 1, last});
-  for (const int threads : {1, 2}) {
-    const vismap::engine::WorldFacets plain = vismap::engine::make_world_facets(mesh, threads);
-    ASSERT_EQ(plain.facets.size(), n);
-    ASSERT_EQ(plain.normals.size(), n);
-    for (const vismap::Scene* general : {&with_quad, &with_line}) {
-      const vismap::engine::WorldFacets g = vismap::engine::make_world_facets(*general, threads);
-      ASSERT_EQ(g.facets.size() > n, general == &with_quad);   // (the quad: one facet, or two where it folds)
-      EXPECT_EQ(g.degenerate, general == &with_line ? 1 : 0);
+  with_line.faces.insert(with_line.faces.begin() + 3000, {last - 2, last - 1, last});
+  for (const vismap::Scene* triangles : {&mesh, static_cast<const vismap::Scene*>(&with_line)}) {
+    vismap::Scene with_quad = *triangles;
+    with_quad.faces.push_back({0, 1, 62, 61});
+    for (const int threads : {1, 2}) {
+      const vismap::engine::WorldFacets t = vismap::engine::make_world_facets(*triangles, threads);
+      const vismap::engine::WorldFacets g = vismap::engine::make_world_facets(with_quad, threads);
+      const std::size_t n = mesh.faces.size();
+      ASSERT_EQ(t.facets.size(), n);
+      ASSERT_EQ(t.normals.size(), n);
+      ASSERT_GT(g.facets.size(), n);   // (the quad: one facet, or two where it folds)
+      EXPECT_EQ(t.degenerate, triangles == &with_line ? 1 : 0);
+      EXPECT_EQ(g.degenerate, t.degenerate);
       for (std::size_t f = 0; f < n; ++f) {
-        const vismap::engine::WorldFacet &a = plain.facets[f], &b = g.facets[f];
+        const vismap::engine::WorldFacet &a = t.facets[f], &b = g.facets[f];
         ASSERT_EQ(std::tuple(a.face, a.planar, a.split), std::tuple(b.face, b.planar, b.split)) << f;
         ASSERT_EQ(std::vector<std::uint32_t>(a.v.begin(), a.v.end()), std::vector<std::uint32_t>(b.v.begin(), b.v.end())) << f;
         ASSERT_TRUE(std::equal(a.role.begin(), a.role.end(), b.role.begin(), b.role.end())) << f;
-        ASSERT_EQ(plain.normals[f].n, g.normals[f].n) << f;
-        ASSERT_EQ(plain.normals[f].err, g.normals[f].err) << f;
+        ASSERT_EQ(t.normals[f].n, g.normals[f].n) << f;
+        ASSERT_EQ(t.normals[f].err, g.normals[f].err) << f;
       }
     }
   }
