@@ -639,7 +639,6 @@ std::optional<std::vector<WorldPiece>> pieces_of_vertex_pairs(const Scene& scene
   constexpr std::uint32_t kTwo = 1u << 31, kFirst = 1u << 30, kStart = kFirst - 1;
   std::vector<std::uint32_t> pair_at(static_cast<std::size_t>(nedges));
   const int vsize = 16384, vchunks = chunk_count(static_cast<int>(nused), vsize);
-  std::vector<std::size_t> pairs_in(static_cast<std::size_t>(vchunks), 0);
   std::vector<char> three(static_cast<std::size_t>(vchunks), 0);
   parallel_chunks(static_cast<int>(nused), vsize, threads, [&](int c, Chunk r) {
     for (auto v = static_cast<std::size_t>(r.begin); v < static_cast<std::size_t>(r.end); ++v) {
@@ -654,18 +653,15 @@ std::optional<std::vector<WorldPiece>> pieces_of_vertex_pairs(const Scene& scene
           return;
         }
         for (std::uint32_t k = i; k < j; ++k) pair_at[half[k].at] = i | (j - i == 2 ? kTwo : 0) | (k == i ? kFirst : 0);
-        ++pairs_in[static_cast<std::size_t>(c)];
         i = j;
       }
     }
   });
   if (std::find(three.begin(), three.end(), 1) != three.end()) return std::nullopt;
-  std::size_t npairs = 0;
-  for (const std::size_t n : pairs_in) npairs += n;
-  if (nused + nf != npairs + 1) return std::nullopt;   // (V - E + F != 1)
   // Facet by facet, the pieces whose first facet edge it holds, by their
   // vertex pairs (their ranks: vertex_pair_ranks): chunks of facets side by
-  // side, each chunk's pieces after those of the chunks before.
+  // side, each chunk's pieces (its edges that are their pair's first) after
+  // those of the chunks before; all of them are the pairs.
   const int fsize = 16384, fchunks = chunk_count(static_cast<int>(nf), fsize);
   std::vector<std::size_t> start(static_cast<std::size_t>(fchunks) + 1, 0);
   parallel_chunks(static_cast<int>(nf), fsize, threads, [&](int c, Chunk r) {
@@ -673,6 +669,8 @@ std::optional<std::vector<WorldPiece>> pieces_of_vertex_pairs(const Scene& scene
         std::count_if(pair_at.begin() + 3 * r.begin, pair_at.begin() + 3 * r.end, [](std::uint32_t x) { return (x & kFirst) != 0; }));
   });
   for (std::size_t c = 0; c < static_cast<std::size_t>(fchunks); ++c) start[c + 1] += start[c];
+  const std::size_t npairs = start.back();
+  if (nused + nf != npairs + 1) return std::nullopt;   // (V - E + F != 1)
   std::vector<WorldPiece> pieces;
   pieces.reserve(npairs);
   fault_in_spare(pieces, npairs, threads);
