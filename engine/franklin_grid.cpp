@@ -1482,20 +1482,35 @@ P2 crossing_point(const P2& a, const P2& b, const P2& c, const P2& d) {
 
 namespace {
 
+// (Lines only) a drawn curve crossed properly by one that is not drawn, and
+// the box of the crossing (its intervals when made).
+struct DrawnCrossed {
+  int drawn, other;
+  CGAL::Bbox_2 box;
+};
+
 // What cutting one row of cells finds, in the order the cells and pairs were
 // looked at: the rows are cut in parallel and joined in row order.
 struct RowCuts {
   std::vector<std::pair<int, P2>> at;          // (curve, cut point)
   std::vector<std::pair<int, int>> overlaps;   // collinear curves sharing more than a point
   std::vector<int> met;                        // (lines only) curves found to meet a drawn one
+  std::vector<DrawnCrossed> crossed;           // (lines only) crossings of a drawn curve, in this row's cells
   std::int64_t pairs = 0, crossings = 0, uncut = 0;
 };
+
+// How two curves meet (Cutter::meet): not at all (or crossing apart), only at
+// an end point they share and not along a common line (no cut), crossing
+// properly (inside both: Cutter::crossing is the point), or more (an end on
+// the other's inside, an overlap).
+enum class Contact { kNone, kSharedEnd, kCrossing, kMore };
 
 struct Cutter {
   const Grid& g;
   const ScreenScene& ss;
   RowCuts& row;
   int ix, iy;
+  P2 crossing = P2();   // the last proper crossing meet() found
 
   void cut(int c, const P2& p) {
     if (in_cell(g, ix, iy, p)) row.at.emplace_back(c, p);
@@ -1509,14 +1524,15 @@ struct Cutter {
   }
 
   // Cuts C and D, whose boxes meet, where they cross or touch (but where they
-  // cross apart: see meet()); true where they may meet (closed segments) other
-  // than crossing apart, false where they surely do not. The caller holds an
-  // UpwardRounding (one switch per cell, not per pair): the points' intervals
-  // first, CGAL's predicates (rounding to nearest) only where those cannot
-  // tell. (Where the intervals tell, meet() would cut nothing, and would say
-  // they meet exactly where they share an end.)
-  bool meet_on_intervals_first(int ci, int di, bool apart) {
-    if (no_cut_on_intervals(ci, di, apart)) return common_end(ss.curves[ci], ss.curves[di]).has_value();
+  // cross apart: see meet()); how they may meet (closed segments), kNone where
+  // they surely do not or cross apart. The caller holds an UpwardRounding (one
+  // switch per cell, not per pair): the points' intervals first, CGAL's
+  // predicates (rounding to nearest) only where those cannot tell. (Where the
+  // intervals tell, meet() would cut nothing, and would say they meet exactly
+  // where they share an end.)
+  Contact meet_on_intervals_first(int ci, int di, bool apart) {
+    if (no_cut_on_intervals(ci, di, apart))
+      return common_end(ss.curves[ci], ss.curves[di]) ? Contact::kSharedEnd : Contact::kNone;
     NearestRounding nearest;
     return meet(ci, di, apart);
   }
@@ -1602,8 +1618,8 @@ struct Cutter {
 
   // The exact side of meet_on_intervals_first(). Curves `apart` (apart()) are cut
   // only where they overlap or one ends on the other: a proper crossing (or
-  // none) is no cut, and changes nothing of either (false).
-  bool meet(int ci, int di, bool apart) {
+  // none) is no cut, and changes nothing of either (kNone).
+  Contact meet(int ci, int di, bool apart) {
     const Curve &C = ss.curves[ci], &D = ss.curves[di];
     const P2 &cs = C.s->xy(), &ct = C.t->xy(), &ds = D.s->xy(), &dt = D.t->xy();   // (references: no handle copied)
     if (const auto e = common_end(C, D)) {
@@ -1611,34 +1627,35 @@ struct Cutter {
       // same way; then the longer is cut where the shorter ends. Their depths agree
       // at p, so the depth order cannot change inside the common part.
       const P2 &p = *e->p, &a = *e->a, &b = *e->b;
-      if (orient(p, e->ip, a, e->ia, b, e->ib) != CGAL::COLLINEAR || !CGAL::is_positive((a - p) * (b - p))) return true;
+      if (orient(p, e->ip, a, e->ia, b, e->ib) != CGAL::COLLINEAR || !CGAL::is_positive((a - p) * (b - p)))
+        return Contact::kSharedEnd;
       row.overlaps.emplace_back(ci, di);
       if (strictly_within(C, b)) cut(ci, b);
       else if (strictly_within(D, a)) cut(di, a);
-      return true;
+      return Contact::kMore;
     }
     auto o1 = orient(cs, C.vs, ct, C.vt, ds, D.vs), o2 = orient(cs, C.vs, ct, C.vt, dt, D.vt);
-    if (o1 != CGAL::COLLINEAR && o1 == o2) return false;
-    if (o1 == CGAL::COLLINEAR && o2 == CGAL::COLLINEAR) { overlap(ci, di); return true; }
+    if (o1 != CGAL::COLLINEAR && o1 == o2) return Contact::kNone;
+    if (o1 == CGAL::COLLINEAR && o2 == CGAL::COLLINEAR) { overlap(ci, di); return Contact::kMore; }
     if (apart && o1 != CGAL::COLLINEAR && o2 != CGAL::COLLINEAR) {   // (a proper crossing or none)
       ++row.uncut;
-      return false;
+      return Contact::kNone;
     }
     auto o3 = orient(ds, D.vs, dt, D.vt, cs, C.vs), o4 = orient(ds, D.vs, dt, D.vt, ct, C.vt);
-    if (o3 != CGAL::COLLINEAR && o3 == o4) return false;
+    if (o3 != CGAL::COLLINEAR && o3 == o4) return Contact::kNone;
     if (o1 * o2 < 0 && o3 * o4 < 0) {   // proper crossing
-      const P2 p = crossing_point(cs, ct, ds, dt);
+      crossing = crossing_point(cs, ct, ds, dt);
       ++row.crossings;
-      cut(ci, p);
-      cut(di, p);
-      return true;
+      cut(ci, crossing);
+      cut(di, crossing);
+      return Contact::kCrossing;
     }
     // T-junctions: an end point of one lies inside the other.
     if (o1 == CGAL::COLLINEAR && strictly_within(C, ds)) cut(ci, ds);
     if (o2 == CGAL::COLLINEAR && strictly_within(C, dt)) cut(ci, dt);
     if (o3 == CGAL::COLLINEAR && strictly_within(D, cs)) cut(di, cs);
     if (o4 == CGAL::COLLINEAR && strictly_within(D, ct)) cut(di, ct);
-    return true;
+    return Contact::kMore;
   }
 
   // A curve none of whose facets hides anything (they are all seen edge-on) gets
@@ -1735,6 +1752,57 @@ bool apart(const DepthSpan& a, const DepthSpan& b) {
 
 }  // namespace
 
+namespace {
+
+// The vertices (canonical ids, ascending) where two drawn curves with one
+// faces list end. Only there can two drawn lines join into one segment of a
+// lines-only drawing (a map vertex where exactly two edges meet, collinear,
+// drawn with the same kind and faces, is not a vertex: the spec's canonical
+// form): elsewhere the vertex is one whatever else ends there, and a curve
+// that is not drawn and only ends there changes no segment.
+std::vector<VertexId> joinable_ends(const std::vector<Curve>& curves) {
+  std::vector<std::pair<VertexId, int>> ends;   // (vertex, drawn curve)
+  for (std::size_t c = 0; c < curves.size(); ++c)
+    if (curves[c].drawn)
+      for (const VertexId v : {curves[c].vs, curves[c].vt})
+        if (v >= 0) ends.emplace_back(v, static_cast<int>(c));
+  auto faces = [&](int c) { return std::span<const int>(curves[static_cast<std::size_t>(c)].faces.data(),
+                                                         curves[static_cast<std::size_t>(c)].faces.size()); };
+  std::sort(ends.begin(), ends.end(), [&](const auto& x, const auto& y) {
+    if (x.first != y.first) return x.first < y.first;
+    const auto fx = faces(x.second), fy = faces(y.second);
+    return std::lexicographical_compare(fx.begin(), fx.end(), fy.begin(), fy.end());
+  });
+  std::vector<VertexId> joinable;
+  for (std::size_t i = 1; i < ends.size(); ++i) {
+    const auto fa = faces(ends[i - 1].second), fb = faces(ends[i].second);
+    if (ends[i - 1].first == ends[i].first && std::equal(fa.begin(), fa.end(), fb.begin(), fb.end()) &&
+        (joinable.empty() || joinable.back() != ends[i].first))
+      joinable.push_back(ends[i].first);
+  }
+  return joinable;
+}
+
+// The curves that are not drawn and cross a drawn one properly where another
+// such curve may cross it too (their crossings' boxes meet: exact points that
+// are one have boxes that meet), in no order.
+std::vector<int> crossing_others_there(std::vector<DrawnCrossed> crossed) {
+  std::sort(crossed.begin(), crossed.end(), [](const DrawnCrossed& x, const DrawnCrossed& y) {
+    return x.drawn != y.drawn ? x.drawn < y.drawn : x.box.xmin() < y.box.xmin();
+  });
+  std::vector<int> found;
+  for (std::size_t i = 0; i < crossed.size(); ++i)
+    for (std::size_t j = i + 1; j < crossed.size() && crossed[j].drawn == crossed[i].drawn &&
+                                crossed[j].box.xmin() <= crossed[i].box.xmax(); ++j)
+      if (crossed[j].other != crossed[i].other && CGAL::do_overlap(crossed[i].box, crossed[j].box)) {
+        found.push_back(crossed[i].other);
+        found.push_back(crossed[j].other);
+      }
+  return found;
+}
+
+}  // namespace
+
 // Step 8: in each cell, every pair of curves; an intersection counts in the cell
 // holding it (half-open cells), so each is found once; the crossings of curves
 // apart() are not cut.
@@ -1744,6 +1812,7 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
   cuts.list_of.assign(n, Cuts::kNone);
   cuts.needed.assign(n, 1);
   std::vector<std::pair<int, int>> overlaps;
+  std::vector<DrawnCrossed> crossed;   // (lines only)
   std::int64_t pairs = 0, crossings = 0, uncut = 0;
   // visit(cutter, cell) for every cell, the rows in parallel; what they found is
   // joined in row order, as one pass over the cells in order would have found it.
@@ -1762,6 +1831,7 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
       for (auto& [c, p] : row.at) cuts.at(c).push_back(std::move(p));
       overlaps.insert(overlaps.end(), row.overlaps.begin(), row.overlaps.end());
       for (int c : row.met) cuts.needed[static_cast<std::size_t>(c)] = 1;
+      crossed.insert(crossed.end(), row.crossed.begin(), row.crossed.end());
       pairs += row.pairs;
       crossings += row.crossings;
       uncut += row.uncut;
@@ -1779,8 +1849,8 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
   auto is_apart = [&](int a, int b) {
     return apart(span[static_cast<std::size_t>(a)], span[static_cast<std::size_t>(b)]);
   };
-  // A cell's pairs that `wanted(a, b)`, met(a, b) where they may meet: on the
-  // points' intervals first, one rounding switch per cell.
+  // A cell's pairs that `wanted(a, b)`, met(a, b, how) where they may meet: on
+  // the points' intervals first, one rounding switch per cell.
   auto each_pair = [&](Cutter& cutter, const Cell& cell, auto&& wanted, auto&& met) {
     const auto& cs = cell.curves;
     if (cs.size() < 2) return;
@@ -1788,36 +1858,62 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
     for (std::size_t i = 0; i < cs.size(); ++i)
       for (std::size_t j = i + 1; j < cs.size(); ++j) {
         const int a = cs[i], b = cs[j];
-        if (wanted(a, b) && cutter.boxes_meet(a, b) && cutter.meet_on_intervals_first(a, b, is_apart(a, b))) met(a, b);
+        if (!wanted(a, b) || !cutter.boxes_meet(a, b)) continue;
+        if (const Contact how = cutter.meet_on_intervals_first(a, b, is_apart(a, b)); how != Contact::kNone) met(a, b, how);
       }
   };
   if (regions) {
     each_cell([&](Cutter& cutter, const Cell& cell) {
-      each_pair(cutter, cell, [](int, int) { return true; }, [](int, int) {});
+      each_pair(cutter, cell, [](int, int) { return true; }, [](int, int, Contact) {});
       for (int ci : cell.curves) pierce(cutter, cell, ci);
     });
   } else {
     // The drawn lines alone (Franklin's step 8 iv-v): every pair with a drawn
-    // curve. A curve that is not drawn but meets a drawn one is needed too (a
-    // region boundary ending there splits the drawn line's segment; a nearer
-    // seam over it hides it), unless they cross apart (apart(): that changes
-    // nothing): it is cut against every curve, as for the whole map, so that
-    // its pieces and their labels are the same. Pairs of other curves that are
-    // not drawn are never looked at.
+    // curve. A curve that is not drawn but meets a drawn one may be needed too
+    // (a region boundary ending there splits the drawn line's segment; a
+    // nearer seam over it hides it): it is then cut against every curve, as
+    // for the whole map, so that its pieces and their labels are the same.
+    // Pairs of other curves that are not drawn are never looked at. Not
+    // needed for a drawn line:
+    // - a curve crossing it apart (apart(): that changes nothing);
+    // - one that only shares an end point with it where no two drawn lines
+    //   could join (joinable_ends): that is a vertex whatever else ends there;
+    // - one that crosses it properly at a point no other such curve crosses it
+    //   at (else crossing_others_there). The drawn line is cut there anyway.
+    //   Where the crossing curve is seen beside that point and bounds regions
+    //   there, the faces on its two sides differ, and so do those beside the
+    //   drawn line's two pieces on that side (their labels, told by the facets
+    //   alone): the point is a vertex of the map with or without the curve.
+    //   Where it is not, it changes nothing. (Two such curves through one point
+    //   could bound a region between them, the same face outside the pair.)
     std::vector<char> drawn(n);
     for (std::size_t c = 0; c < n; ++c) drawn[c] = ss.curves[c].drawn;
     cuts.needed = drawn;
+    const std::vector<VertexId> joinable = joinable_ends(ss.curves);
+    auto at_joinable_end = [&](int a, int b) {
+      const VertexId v = Cutter::common_end(ss.curves[a], ss.curves[b])->ip;
+      return v < 0 || std::binary_search(joinable.begin(), joinable.end(), v);
+    };
     each_cell([&](Cutter& cutter, const Cell& cell) {
-      each_pair(cutter, cell, [&](int a, int b) { return drawn[a] || drawn[b]; }, [&](int a, int b) {
+      each_pair(cutter, cell, [&](int a, int b) { return drawn[a] || drawn[b]; }, [&](int a, int b, Contact how) {
+        if (how == Contact::kSharedEnd && !at_joinable_end(a, b)) return;
+        if (how == Contact::kCrossing && drawn[a] != drawn[b]) {
+          // (Counted in the cell holding it, as the cut is; its box as made here,
+          // before any other thread sees the point: the same on every thread count.)
+          if (in_cell(g, cutter.ix, cutter.iy, cutter.crossing))
+            cutter.row.crossed.push_back({drawn[a] ? a : b, drawn[a] ? b : a, cutter.crossing.bbox()});
+          return;
+        }
         cutter.row.met.push_back(a);
         cutter.row.met.push_back(b);
       });
     });
+    for (const int c : crossing_others_there(std::move(crossed))) cuts.needed[static_cast<std::size_t>(c)] = 1;
     bucket_needed_curves(g, ss, cuts.needed, threads);
     each_cell([&](Cutter& cutter, const Cell& cell) {
       const auto& cs = cell.curves;
       each_pair(cutter, cell, [&](int a, int b) { return !drawn[a] && !drawn[b] && (cuts.needed[a] || cuts.needed[b]); },
-                [](int, int) {});
+                [](int, int, Contact) {});
       for (int ci : cs)
         if (cuts.needed[ci]) pierce(cutter, cell, ci);
     });

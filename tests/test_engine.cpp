@@ -328,6 +328,51 @@ TEST(LinesOnly, OneSurfaceIsLookedAtOnlyNearItsDrawnLines) {
     }
 }
 
+// Where two drawn lines of one face meet collinearly (a polygon's border through
+// a corner on a straight side), the map joins them into one segment unless
+// something else visible ends there. Here two smooth edges end there: a wedge
+// face between them, in a notch of a face that passes under the polygon, the
+// same face on both sides of the wedge. A lines-only drawing skips the curves
+// that are not drawn and only share an end with a drawn one, but not these:
+// the side stays cut at that corner, as in the whole map.
+TEST(LinesOnly, UndrawnEdgesEndingWhereTwoDrawnLinesCouldJoinAreKept) {
+  vismap::Scene scene;
+  // The plate, face 0: a square with a corner M = (1, 0, 0) on its bottom side.
+  scene.vertices = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}};
+  scene.faces = {{0, 1, 2, 3, 4}};
+  // Faces 1 (notched round M) and 2 (the wedge in the notch), in one plane
+  // through M: below the plate where they pass under it, above it outside.
+  for (const auto& [x, y] : std::vector<std::pair<double, double>>{
+           {0.9, -0.4}, {1.1, -0.4}, {1.5, -0.5}, {1.5, 0.5}, {0.5, 0.5}, {0.5, -0.5}})
+    scene.vertices.push_back({x, y, -0.1 * y});
+  const std::uint32_t corner = 1, g1 = 5, g2 = 6;
+  scene.faces.push_back({corner, g2, 7, 8, 9, 10, g1});
+  scene.faces.push_back({corner, g1, g2});
+  const vismap::View view = vismap::make_view(ortho({0.1, 0.2, -1}), scene);
+  vismap::Options whole;
+  whole.threads = 1;
+  vismap::Options lines = whole;
+  lines.regions = false;
+  // In the whole map, one vertex (M's image) joins exactly two segments, the
+  // plate's, collinear: cut there only for the smooth edges.
+  const vismap::VisibilityMap m = vismap::visibility_franklin(scene, view, whole);
+  std::map<std::uint32_t, std::vector<std::size_t>> ending;   // vertex -> its segments
+  for (std::size_t i = 0; i < m.segments.size(); ++i)
+    for (const std::uint32_t v : {m.segments[i].from, m.segments[i].to}) ending[v].push_back(i);
+  int kept_corners = 0;
+  for (const auto& [v, at] : ending) {
+    if (at.size() != 2) continue;
+    const auto& s = m.segments[at[0]];
+    const auto& t = m.segments[at[1]];
+    if (s.faces != std::vector<int>{0} || t.faces != std::vector<int>{0}) continue;
+    const vismap::Point2 &p = m.at(s.from == v ? s.to : s.from), &o = m.at(v), &q = m.at(t.from == v ? t.to : t.from);
+    kept_corners += (o.x - p.x) * (q.y - p.y) == (o.y - p.y) * (q.x - p.x);
+  }
+  EXPECT_EQ(kept_corners, 1) << "the plate's side is not cut at M alone";
+  const std::string drawn = segments_of(map_json(scene, view, lines));
+  EXPECT_EQ(drawn, segments_of(map_json(scene, view, whole))) << "the lines alone differ from the whole map's";
+}
+
 // A lines-only drawing leaves the pieces it does not draw latent (made later
 // only where a drawn line is) while they are the more numerous; where most
 // pieces are drawn (a small crease angle on a dense mesh) it makes them all at
