@@ -1216,9 +1216,13 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   const bool later = latent && M.all_front && can_defer_images;
   ss.images = ImageTable(used.size());
   if (later) {
-    ss.image_bounds = parallel_make<ImageBounds>(nu, 1024, threads, [&](int, int u, ImageBounds& b) {
-      M.fetch_after(static_cast<std::size_t>(u));
-      b = M.bounds_of(static_cast<std::uint32_t>(u));
+    // (Written in place: plain doubles, no chunk's vector made and moved.)
+    ss.image_bounds.resize(used.size());
+    parallel_chunks(nu, 4096, threads, [&](int, Chunk r) {
+      for (int u = r.begin; u < r.end; ++u) {
+        M.fetch_after(static_cast<std::size_t>(u));
+        ss.image_bounds[static_cast<std::size_t>(u)] = M.bounds_of(static_cast<std::uint32_t>(u));
+      }
     });
     M.bounds = ss.image_bounds.data();
   } else {
