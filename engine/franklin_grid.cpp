@@ -1510,7 +1510,8 @@ struct Cutter {
   const ScreenScene& ss;
   RowCuts& row;
   int ix, iy;
-  P2 crossing = P2();   // the last proper crossing meet() found
+  // The last proper crossing meet() found, where this cell holds it (else none).
+  std::optional<P2> crossing = std::nullopt;
 
   void cut(int c, const P2& p) {
     if (in_cell(g, ix, iy, p)) row.at.emplace_back(c, p);
@@ -1644,10 +1645,14 @@ struct Cutter {
     auto o3 = orient(ds, D.vs, dt, D.vt, cs, C.vs), o4 = orient(ds, D.vs, dt, D.vt, ct, C.vt);
     if (o3 != CGAL::COLLINEAR && o3 == o4) return Contact::kNone;
     if (o1 * o2 < 0 && o3 * o4 < 0) {   // proper crossing
-      crossing = crossing_point(cs, ct, ds, dt);
+      const P2 p = crossing_point(cs, ct, ds, dt);
       ++row.crossings;
-      cut(ci, crossing);
-      cut(di, crossing);
+      crossing.reset();
+      if (in_cell(g, ix, iy, p)) {   // (as cut(): counted in the cell holding it)
+        row.at.emplace_back(ci, p);
+        row.at.emplace_back(di, p);
+        crossing = p;
+      }
       return Contact::kCrossing;
     }
     // T-junctions: an end point of one lies inside the other.
@@ -1761,25 +1766,19 @@ namespace {
 // form): elsewhere the vertex is one whatever else ends there, and a curve
 // that is not drawn and only ends there changes no segment.
 std::vector<VertexId> joinable_ends(const std::vector<Curve>& curves) {
-  std::vector<std::pair<VertexId, int>> ends;   // (vertex, drawn curve)
-  for (std::size_t c = 0; c < curves.size(); ++c)
-    if (curves[c].drawn)
-      for (const VertexId v : {curves[c].vs, curves[c].vt})
-        if (v >= 0) ends.emplace_back(v, static_cast<int>(c));
-  auto faces = [&](int c) { return std::span<const int>(curves[static_cast<std::size_t>(c)].faces.data(),
-                                                         curves[static_cast<std::size_t>(c)].faces.size()); };
-  std::sort(ends.begin(), ends.end(), [&](const auto& x, const auto& y) {
-    if (x.first != y.first) return x.first < y.first;
-    const auto fx = faces(x.second), fy = faces(y.second);
-    return std::lexicographical_compare(fx.begin(), fx.end(), fy.begin(), fy.end());
+  std::vector<std::pair<VertexId, const SmallInts*>> ends;   // (vertex, a drawn curve's faces)
+  for (const Curve& c : curves)
+    if (c.drawn)
+      for (const VertexId v : {c.vs, c.vt})
+        if (v >= 0) ends.emplace_back(v, &c.faces);
+  std::sort(ends.begin(), ends.end(), [](const auto& x, const auto& y) {
+    return x.first != y.first ? x.first < y.first : *x.second < *y.second;
   });
   std::vector<VertexId> joinable;
-  for (std::size_t i = 1; i < ends.size(); ++i) {
-    const auto fa = faces(ends[i - 1].second), fb = faces(ends[i].second);
-    if (ends[i - 1].first == ends[i].first && std::equal(fa.begin(), fa.end(), fb.begin(), fb.end()) &&
+  for (std::size_t i = 1; i < ends.size(); ++i)
+    if (ends[i - 1].first == ends[i].first && *ends[i - 1].second == *ends[i].second &&
         (joinable.empty() || joinable.back() != ends[i].first))
       joinable.push_back(ends[i].first);
-  }
   return joinable;
 }
 
@@ -1900,8 +1899,8 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
         if (how == Contact::kCrossing && drawn[a] != drawn[b]) {
           // (Counted in the cell holding it, as the cut is; its box as made here,
           // before any other thread sees the point: the same on every thread count.)
-          if (in_cell(g, cutter.ix, cutter.iy, cutter.crossing))
-            cutter.row.crossed.push_back({drawn[a] ? a : b, drawn[a] ? b : a, cutter.crossing.bbox()});
+          if (cutter.crossing)
+            cutter.row.crossed.push_back({drawn[a] ? a : b, drawn[a] ? b : a, cutter.crossing->bbox()});
           return;
         }
         cutter.row.met.push_back(a);
