@@ -106,6 +106,7 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   // 7. Edges into the cells they cross, unless behind the blocking face; 7b drops hidden ones
   // (for a lines-only drawing, edges that are not drawn only where a drawn one is).
   bucket_curves(grid, ss, opt.regions, threads, st);
+  if (ss.sparse()) st.count("image_bounds_made", std::count(ss.bounds_made.begin(), ss.bounds_made.end(), 1));
   st.time("edges_to_cells", clock.lap());
 
   // 8. Intersect the edges pairwise within each cell (for a lines-only drawing:

@@ -52,7 +52,7 @@ class ImageCells {
     parallel_chunks(static_cast<int>(range_.size()), 8192, threads, [&](int, Chunk r) {
       for (int i = r.begin; i < r.end; ++i) {
         const P3& p = images_[static_cast<std::size_t>(i)];   // (a slot: perhaps not made)
-        if (!ss.kept_bounds(p) && !images_.made(static_cast<std::size_t>(i))) continue;   // (behind the near plane)
+        if (ss.kept_place(p) < 0 && !images_.made(static_cast<std::size_t>(i))) continue;   // (behind the near plane)
         const Interval x = ss.x_of(p), y = ss.y_of(p);   // (as a box of it takes them)
         range_[static_cast<std::size_t>(i)] = range_of(g, CGAL::Bbox_2(x.inf(), y.inf(), x.sup(), y.sup()));
       }
@@ -224,15 +224,23 @@ double facet_area(const ScreenScene& ss, std::size_t fi, const Axis& X, const Ax
   if (!f.occluder) return 0;
   const SmallVec<const P3*, 4> v = corners_of(ss, fi);   // (its Facet may not be made yet)
   const std::size_t n = v.size();
+  if (n == 0) return 0;
+  auto xy = [&](std::size_t k) { return std::array<Interval, 2>{ss.x_of(*v[k]), ss.y_of(*v[k])}; };   // (each read once)
   double a = 0;
+  CGAL::Bbox_2 box = f.box;   // (a sparse scene's brief may have none yet: its corners')
+  const bool boxed = box.xmin() <= box.xmax();
+  const std::array<Interval, 2> first = xy(0);
+  std::array<Interval, 2> p = first;
   for (std::size_t k = 0; k < n; ++k) {
-    const P3 &p = *v[k], &q = *v[(k + 1) % n];
-    a += CGAL::to_double(ss.x_of(p)) * CGAL::to_double(ss.y_of(q)) - CGAL::to_double(ss.x_of(q)) * CGAL::to_double(ss.y_of(p));
+    const std::array<Interval, 2> q = k + 1 < n ? xy(k + 1) : first;
+    a += CGAL::to_double(p[0]) * CGAL::to_double(q[1]) - CGAL::to_double(q[0]) * CGAL::to_double(p[1]);
+    if (!boxed) box += CGAL::Bbox_2(p[0].inf(), p[1].inf(), p[0].sup(), p[1].sup());
+    p = q;
   }
-  const double w = f.box.xmax() - f.box.xmin(), h = f.box.ymax() - f.box.ymin();
+  const double w = box.xmax() - box.xmin(), h = box.ymax() - box.ymin();
   if (!(w > 0 && h > 0)) return 0;
-  const double sx = (warped(X, f.box.xmax()) - warped(X, f.box.xmin())) / w;
-  const double sy = (warped(Y, f.box.ymax()) - warped(Y, f.box.ymin())) / h;
+  const double sx = (warped(X, box.xmax()) - warped(X, box.xmin())) / w;
+  const double sy = (warped(Y, box.ymax()) - warped(Y, box.ymin())) / h;
   return std::abs(a) / 2 * sx * sy;
 }
 
@@ -245,8 +253,9 @@ double facet_area(const ScreenScene& ss, std::size_t fi, const Axis& X, const Ax
 // them took the terrain 13 ms; 2^14 tell its depth complexity within 1 %).
 // Chunks of the sample in parallel, their sums added in chunk order: the same
 // for every thread count.
+std::size_t depth_sample_step(std::size_t nf) { return std::max<std::size_t>(1, nf > (1u << 18) ? nf >> 14 : nf >> 16); }
 double depth_complexity(const ScreenScene& ss, const Axis& X, const Axis& Y, int threads) {
-  const std::size_t nf = ss.facet_count(), step = std::max<std::size_t>(1, nf > (1u << 18) ? nf >> 14 : nf >> 16);
+  const std::size_t nf = ss.facet_count(), step = depth_sample_step(nf);
   const int n = static_cast<int>((nf + step - 1) / step), size = 8192;
   std::vector<double> part(static_cast<std::size_t>(chunk_count(n, size)), 0);
   parallel_chunks(n, size, threads, [&](int c, Chunk r) {
@@ -344,15 +353,21 @@ Axis::Axis(std::vector<double> bounds) : bounds_(std::move(bounds)) {
 // end points instead, so that the cells follow the drawing where projected sizes
 // vary (a close-up in perspective: near faces thousands of times larger than far
 // ones), and N, L and the depth complexity are measured in those coordinates.
-Grid make_grid(const ScreenScene& ss, double c, int threads, Stats& stats) {
+Grid make_grid(ScreenScene& ss, double c, int threads, Stats& stats) {
   // The box of the curves and occluders: the union of the made curves' boxes
   // and of the boxes of runs of latent curves and of occluders (kept for step 5).
+  // A sparse scene has no box for most facets nor for its latent curves: the
+  // runs of facets (each latent curve lies on one) from the world instead.
   Grid g;
-  g.latent_runs = run_boxes(static_cast<int>(ss.latent_piece.size()), threads,
-                            [&](int i, CGAL::Bbox_2& b) { b += latent_box(ss, static_cast<std::size_t>(i)); });
-  g.occluder_runs = run_boxes(static_cast<int>(ss.facet_count()), threads, [&](int i, CGAL::Bbox_2& b) {
-    if (ss.brief(i).occluder) b += ss.brief(i).box;
-  });
+  if (ss.sparse()) {
+    g.occluder_runs = world_run_boxes(ss, Grid::kRun, threads);
+  } else {
+    g.latent_runs = run_boxes(static_cast<int>(ss.latent_piece.size()), threads,
+                              [&](int i, CGAL::Bbox_2& b) { b += latent_box(ss, static_cast<std::size_t>(i)); });
+    g.occluder_runs = run_boxes(static_cast<int>(ss.facet_count()), threads, [&](int i, CGAL::Bbox_2& b) {
+      if (ss.brief(i).occluder) b += ss.brief(i).box;
+    });
+  }
   CGAL::Bbox_2 box;   // (empty)
   for (const Curve& curve : ss.curves) box += curve.box;
   for (const auto* runs : {&g.latent_runs, &g.occluder_runs})
@@ -381,6 +396,11 @@ Grid make_grid(const ScreenScene& ss, double c, int threads, Stats& stats) {
     // do: a mesh seen from outside, a terrain. c is scaled by sqrt(D / 5), within
     // [1/4, 1], D the depth complexity (measured: c = 4 is best at D = 5-10 on
     // random squares, c = 1-2 on meshes, where D is about 1).
+    if (ss.sparse()) {   // (the sample's boxes and corners, made once: each is read several times)
+      std::vector<char> sample(ss.facet_count(), 0);
+      for (std::size_t fi = 0; fi < sample.size(); fi += depth_sample_step(sample.size())) sample[fi] = 1;
+      make_boxes(ss, sample, threads);
+    }
     const double D = depth_complexity(ss, X, Y, threads);
     c *= std::clamp(std::sqrt(D / 5), 0.25, 1.0);
     stats.count("depth_complexity_percent", static_cast<std::int64_t>(std::min(D, 1e9) * 100));
@@ -538,7 +558,7 @@ struct DrawingCells {
   std::vector<char> latent_near;   // per latent curve
   bool all() const { return cell.empty(); }
 };
-DrawingCells drawing_cells(const Grid& g, const ScreenScene& ss, bool regions, int threads) {
+DrawingCells drawing_cells(const Grid& g, ScreenScene& ss, bool regions, int threads) {
   DrawingCells d;
   const std::vector<WorldPiece>* pieces = latent_pieces_of(ss);
   if (regions || !occluders_in_one_solid(ss) || (!ss.latent_piece.empty() && !pieces)) return d;
@@ -565,17 +585,45 @@ DrawingCells drawing_cells(const Grid& g, const ScreenScene& ss, bool regions, i
   d.latent_near.assign(ss.latent_piece.size(), 0);
   const int n = static_cast<int>(ss.latent_piece.size()), runs = static_cast<int>(g.latent_runs.size());
   std::vector<std::vector<std::pair<int, CellRange>>> found(static_cast<std::size_t>(chunk_count(runs, 256)));
+  // (A sparse scene's: from the runs of facets, the run of a latent curve's
+  // first sharer, on which it lies.)
+  // Their facets' boxes are made first (step 5 makes those of every run near
+  // the cells it looks at, these among them): a latent curve lies on its facet,
+  // within its box.
+  std::vector<char> facet_run_near;
+  if (ss.sparse()) {
+    facet_run_near.resize(g.occluder_runs.size());
+    for (std::size_t run = 0; run < facet_run_near.size(); ++run) facet_run_near[run] = near_drawn.any(g, g.occluder_runs[run]);
+    std::vector<char> which(ss.facet_count());
+    for (std::size_t fi = 0; fi < which.size(); ++fi) which[fi] = facet_run_near[fi / Grid::kRun];
+    make_boxes(ss, which, threads);
+  }
+  auto take = [&](int i, std::vector<std::pair<int, CellRange>>& here) {
+    const CellRange range = range_of(g, latent_box(ss, static_cast<std::size_t>(i)));
+    if (near_drawn.any(range)) here.emplace_back(i, range);
+  };
   parallel_chunks(runs, 256, threads, [&](int k, Chunk r) {
     std::vector<std::pair<int, CellRange>> here;   // (filled here, stored once)
     for (int run = r.begin; run < r.end; ++run) {
       if (!near_drawn.any(g, g.latent_runs[static_cast<std::size_t>(run)])) continue;
-      for (int i = run * Grid::kRun; i < std::min(n, (run + 1) * Grid::kRun); ++i) {
-        const CellRange range = range_of(g, latent_box(ss, static_cast<std::size_t>(i)));
-        if (near_drawn.any(range)) here.emplace_back(i, range);
-      }
+      for (int i = run * Grid::kRun; i < std::min(n, (run + 1) * Grid::kRun); ++i) take(i, here);
     }
     found[static_cast<std::size_t>(k)] = std::move(here);
   });
+  if (ss.sparse()) {
+    found.assign(static_cast<std::size_t>(chunk_count(n, 16384)), {});
+    parallel_chunks(n, 16384, threads, [&](int k, Chunk r) {
+      std::vector<std::pair<int, CellRange>> here;
+      for (int i = r.begin; i < r.end; ++i) {
+        const int first = (*pieces)[static_cast<std::size_t>(ss.latent_piece[static_cast<std::size_t>(i)])].sharers[0].facet;
+        if (!facet_run_near[static_cast<std::size_t>(first / Grid::kRun)]) continue;
+        const CGAL::Bbox_2& box = ss.brief(static_cast<std::size_t>(first)).box;   // (none: edge-on)
+        if (box.xmin() <= box.xmax() && !near_drawn.any(g, box)) continue;
+        take(i, here);
+      }
+      found[static_cast<std::size_t>(k)] = std::move(here);
+    });
+  }
   for (const auto& here : found)
     for (const auto& [i, range] : here) {
       d.latent_near[static_cast<std::size_t>(i)] = 1;
@@ -583,6 +631,7 @@ DrawingCells drawing_cells(const Grid& g, const ScreenScene& ss, bool regions, i
       for (const Sharer& s : (*pieces)[static_cast<std::size_t>(ss.latent_piece[static_cast<std::size_t>(i)])].sharers)
         d.whole[static_cast<std::size_t>(s.facet)] = 1;
     }
+  make_boxes(ss, d.whole, threads);   // (a sparse scene's, where not made yet)
   for (std::size_t f = 0; f < d.whole.size(); ++f)
     if (d.whole[f]) each_cell(range_of(g, ss.brief(f).box), [&](std::size_t k) { d.cell[k] = 1; });
   return d;
@@ -593,15 +642,25 @@ DrawingCells drawing_cells(const Grid& g, const ScreenScene& ss, bool regions, i
 // pair search. Where only some cells are looked at (`looked`), only the
 // occluders' in runs whose box reaches one of them (no other is listed; the
 // rest: no cells).
-std::vector<CellRange> facet_ranges(const Grid& g, const ScreenScene& ss, const MarkedCells* looked, int threads) {
+std::vector<CellRange> facet_ranges(const Grid& g, ScreenScene& ss, const MarkedCells* looked, int threads) {
   const int nf = static_cast<int>(ss.facet_count());
   std::vector<CellRange> range(ss.facet_count());
   if (looked) {
-    parallel_chunks(static_cast<int>(g.occluder_runs.size()), 256, threads, [&](int, Chunk r) {
+    const int runs = static_cast<int>(g.occluder_runs.size());
+    std::vector<char> near(static_cast<std::size_t>(runs));
+    parallel_chunks(runs, 256, threads, [&](int, Chunk r) {
+      for (int run = r.begin; run < r.end; ++run) near[static_cast<std::size_t>(run)] = looked->any(g, g.occluder_runs[static_cast<std::size_t>(run)]);
+    });
+    if (ss.sparse()) {   // (their boxes, where not made yet)
+      std::vector<char> which(ss.facet_count(), 0);
+      for (int fi = 0; fi < nf; ++fi) which[static_cast<std::size_t>(fi)] = near[static_cast<std::size_t>(fi / Grid::kRun)];
+      make_boxes(ss, which, threads);
+    }
+    parallel_chunks(runs, 256, threads, [&](int, Chunk r) {
       for (int run = r.begin; run < r.end; ++run) {
-        const bool near = looked->any(g, g.occluder_runs[static_cast<std::size_t>(run)]);
+        const bool near_here = near[static_cast<std::size_t>(run)];
         for (int fi = run * Grid::kRun; fi < std::min(nf, (run + 1) * Grid::kRun); ++fi)
-          range[static_cast<std::size_t>(fi)] = near && ss.brief(fi).occluder ? range_of(g, ss.brief(fi).box) : CellRange{0, -1, 0, -1};
+          range[static_cast<std::size_t>(fi)] = near_here && ss.brief(fi).occluder ? range_of(g, ss.brief(fi).box) : CellRange{0, -1, 0, -1};
       }
     });
     return range;

@@ -135,7 +135,7 @@ bool depth_crossing(const Curve& C, const Curve& D, const P2& lo, const P2& hi, 
 // Where curve C crosses facet F's depth plane (its ends on either side of it).
 P2 plane_crossing(const Curve& C, const Facet& F);
 
-Grid make_grid(const ScreenScene& ss, double c, int threads, Stats& stats);       // steps 2-4
+Grid make_grid(ScreenScene& ss, double c, int threads, Stats& stats);       // steps 2-4
 void bucket_facets(Grid& g, ScreenScene& ss, bool regions, int threads, Stats& stats);         // step 5
 void prune_facets(Grid& g, const ScreenScene& ss, int threads, Stats& stats);                  // step 6
 void add_intersection_lines(const Grid& g, ScreenScene& ss, int threads, Stats& stats);   // faces piercing each other

@@ -151,8 +151,8 @@ CGAL::Bbox_2 box_of(const ImageBounds& b) { return CGAL::Bbox_2(b.x.inf(), b.y.i
 // The box of a corner or curve end of ss: its kept intervals' where its image is
 // left for later.
 CGAL::Bbox_2 box_at(const ScreenScene& ss, const P3& p) {
-  const ImageBounds* b = ss.kept_bounds(p);
-  return b ? box_of(*b) : box_of(p);
+  const std::ptrdiff_t u = ss.kept_place(p);
+  return u >= 0 ? box_of(ss.kept_bounds(u)) : box_of(p);
 }
 
 // World point on segment p->q where the near plane (Z = 0) cuts it.
@@ -494,6 +494,7 @@ struct CurveMaker {
   std::vector<std::uint32_t> local;   // input index -> place in used
   const P3* sv = nullptr;             // images, by place (the screen scene's table)
   const ImageBounds* bounds = nullptr;   // their intervals, by place, where they are left for later
+  const char* bounds_made = nullptr;     // which of those are made, where only some are (sparse)
   std::vector<char> front;            // in front of the near plane, by place
   bool all_front = false;             // every vertex is (in_front then reads nothing)
   const ExactSource* exact = nullptr;   // (the screen scene's)
@@ -554,8 +555,10 @@ struct CurveMaker {
   }
   // The box of vertex id's image (its kept intervals where it is left for later).
   CGAL::Bbox_2 image_box(std::uint32_t id) const {
-    return bounds ? box_of(bounds[local[id]]) : box_of(image(id));
+    return bounds ? box_of(bounds_at(local[id])) : box_of(image(id));
   }
+  // The intervals at place u, kept or (not made yet) computed now.
+  ImageBounds bounds_at(std::uint32_t u) const { return !bounds_made || bounds_made[u] ? bounds[u] : bounds_of(u); }
   // Whether vertices a and b (in front) have one image on the screen, exactly.
   bool same_image(std::uint32_t a, std::uint32_t b) const;
   WorldPoint world(std::uint32_t id) const {
@@ -823,7 +826,7 @@ bool CurveMaker::same_image(std::uint32_t a, std::uint32_t b) const {
   if (!bounds) return equal_points(image(a).xy(), image(b).xy());
   // (As equal_points: apart intervals tell, uncounted; else the two points,
   // made for the question, compared as the images would be.)
-  const ImageBounds &p = bounds[local[a]], &q = bounds[local[b]];
+  const ImageBounds p = bounds_at(local[a]), q = bounds_at(local[b]);
   auto apart = [](const Interval& i, const Interval& j) { return i.sup() < j.inf() || j.sup() < i.inf(); };
   if (apart(p.x, q.x) || apart(p.y, q.y)) return false;
   return equal_points(make_image(local[a]).xy(), make_image(local[b]).xy());
@@ -832,6 +835,9 @@ bool CurveMaker::same_image(std::uint32_t a, std::uint32_t b) const {
 namespace {
 // The images at `places` (any order, repeats allowed) that are not made yet,
 // made in parallel, each on one thread, in the order of their places.
+// (Sparse scenes: the intervals of the images at places, made where not yet.)
+void make_bounds_of(const CurveMaker& M, ScreenScene& ss, const std::vector<std::uint32_t>& places, int threads);
+
 void make_images_of(const CurveMaker& M, ImageTable& images, const std::vector<std::uint32_t>& places, int threads) {
   std::vector<char> wanted(images.size(), 0);
   for (const std::uint32_t u : places) wanted[u] = !images.made(u);
@@ -1214,8 +1220,25 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   // (make_images), mostly a few per cent.
   M.all_front = std::all_of(front.begin(), front.end(), [](char f) { return f != 0; });
   const bool later = latent && M.all_front && can_defer_images;
+  // A lines-only drawing that will look only near its lines (drawing_cells: every
+  // facet in one solid, nothing cut at the near plane) keeps each facet's brief
+  // alone; make_facets makes the Facets of those near its lines (the 10^6-
+  // triangle terrain: 7 % of them; 104 bytes fewer for each of the others).
+  if (cull) ss.solid = solid_labels(closed, height_field, wf.facets.size());   // (camera-free: known now)
+  const bool lean = later && cull && all_in_one_solid(ss.solid);
+  // Orthographic, it is sparse: even the intervals of the images are made only
+  // where asked (make_bounds), a facet's box only where its cells may be looked
+  // at (make_boxes; the grid's steps find those from runs of facets' boxes made
+  // from the world: world_run_boxes), its facing from the world. (The terrain
+  // seen obliquely: 1.5 M coordinates and 10^6 boxes were 0.37 s of its 1.5 s.)
+  const bool sparse = lean && !view.perspective && !used.empty();
   ss.images = ImageTable(used.size());
-  if (later) {
+  if (sparse) {
+    ss.image_bounds.resize(used.size());
+    ss.bounds_made.assign(used.size(), 0);
+    M.bounds = ss.image_bounds.data();
+    M.bounds_made = ss.bounds_made.data();
+  } else if (later) {
     // (Written in place: plain doubles, no chunk's vector made and moved.)
     ss.image_bounds.resize(used.size());
     parallel_chunks(nu, 4096, threads, [&](int, Chunk r) {
@@ -1337,14 +1360,47 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     b.occluder = true;
     if (!parallel_to_screen(ss, n, corner)) exact->spanning[fi] = spanning_ids(scene, w);
   };
+  // A sparse scene's brief: its facing from its world corners (the sign of the
+  // polygon's area vector, a fan of cross products, along r x u: as
+  // world_area_sign, on intervals first), no box yet (make_boxes), its plane's
+  // spanning corners (its Facet, if made, may be parallel to the screen: they
+  // are then not read).
+  std::array<Interval, 3> axis;   // r x u, the view's direction (intervals)
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const auto &r = view.m[0], &u = view.m[1];
+    auto at = [](double d) { return Interval(d); };
+    axis = {at(r[1]) * at(u[2]) - at(r[2]) * at(u[1]), at(r[2]) * at(u[0]) - at(r[0]) * at(u[2]),
+            at(r[0]) * at(u[1]) - at(r[1]) * at(u[0])};
+  }
+  auto sparse_brief = [&](std::size_t fi, FacetBrief& b, std::int64_t& edge_on) {
+    const WorldFacet& w = wf.facets[fi];
+    const std::size_t n = w.v.size();
+    b.face = w.face;
+    b.projected = true;
+    auto vertex = [&](std::size_t k) -> const Vec3& { return scene.vertices[w.v[k]]; };
+    const CGAL::Sign s = filtered_sign(
+        [&] {
+          const Vec3& o = vertex(0);
+          Interval ax = 0, ay = 0, az = 0;
+          for (std::size_t k = 1; k + 1 < n; ++k) {
+            const Vec3 &p = vertex(k), &q = vertex(k + 1);
+            const Interval px = Interval(p.x) - o.x, py = Interval(p.y) - o.y, pz = Interval(p.z) - o.z;
+            const Interval qx = Interval(q.x) - o.x, qy = Interval(q.y) - o.y, qz = Interval(q.z) - o.z;
+            ax += py * qz - pz * qy;
+            ay += pz * qx - px * qz;
+            az += px * qy - py * qx;
+          }
+          return axis[0] * ax + axis[1] * ay + axis[2] * az;
+        },
+        [&]() -> mpq_class { return world_area_sign(view, scene, n, [&](std::size_t k) { return w.v[k]; }); });
+    b.facing = s > 0 ? Facing::Front : s < 0 ? Facing::Back : Facing::EdgeOn;
+    if (b.facing == Facing::EdgeOn) { ++edge_on; return; }
+    b.occluder = true;
+    exact->spanning[fi] = spanning_ids(scene, w);
+  };
   // (A chunk's planes in a vector of their own, its room made as it starts.)
   ss.planes.resize(culled.size());
-  // A lines-only drawing that will look only near its lines (drawing_cells: every
-  // facet in one solid, nothing cut at the near plane) keeps each facet's brief
-  // alone; make_facets makes the Facets of those near its lines (the 10^6-
-  // triangle terrain: 7 % of them; 104 bytes fewer for each of the others).
-  if (cull) ss.solid = solid_labels(closed, height_field, wf.facets.size());   // (camera-free: known now)
-  const bool lean = later && cull && all_in_one_solid(ss.solid);
   // (Made in their places: a Facet holds no kernel number, so default-made on
   // one thread it is nothing the threads share.)
   if (lean) ss.briefs.resize(static_cast<std::size_t>(nf));
@@ -1365,7 +1421,8 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
         project_facet(fi, ss.facets[fi], outside, edge_on, planes);
         continue;
       }
-      brief_facet(fi, ss.briefs[fi], edge_on);
+      if (sparse) sparse_brief(fi, ss.briefs[fi], edge_on);
+      else brief_facet(fi, ss.briefs[fi], edge_on);
     }
   });
   const auto [outside, edge_on] = summed(culled);
@@ -1409,6 +1466,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
           ends.push_back(M.local[pieces[i].b]);
         }
       make_images_of(M, ss.images, ends, threads);
+      make_bounds_of(M, ss, ends, threads);
     }
   }
   // Room for every curve made here, so that none is moved (a vector grown by
@@ -1493,6 +1551,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
 void make_images(ScreenScene& ss, const std::vector<std::uint32_t>& places, int threads) {
   if (ss.image_bounds.empty() || places.empty()) return;   // (every image made)
   make_images_of(*ss.maker, ss.images, places, threads);
+  make_bounds_of(*ss.maker, ss, places, threads);   // (read again and again where they are made)
 }
 
 void make_corner_images(ScreenScene& ss, const std::vector<char>& which, int threads) {
@@ -1507,6 +1566,103 @@ void make_corner_images(ScreenScene& ss, const std::vector<char>& which, int thr
         for (const P3& p : ss.facet(fi).v) places.push_back(static_cast<std::uint32_t>(&p - ss.images.data()));
   }
   make_images(ss, places, threads);
+}
+
+ImageBounds ScreenScene::bounds_now(std::size_t u) const { return maker->bounds_of(static_cast<std::uint32_t>(u)); }
+
+void make_bounds(ScreenScene& ss, const std::vector<std::uint32_t>& places, int threads) {
+  if (ss.sparse()) make_bounds_of(*ss.maker, ss, places, threads);
+}
+
+namespace {
+void make_bounds_of(const CurveMaker& M, ScreenScene& ss, const std::vector<std::uint32_t>& places, int threads) {
+  if (!ss.sparse()) return;
+  std::vector<std::uint32_t> to_make;   // (each once: marked 2 while listed)
+  for (const std::uint32_t u : places)
+    if (ss.bounds_made[u] == 0) {
+      ss.bounds_made[u] = 2;
+      to_make.push_back(u);
+    }
+  parallel_chunks(static_cast<int>(to_make.size()), 4096, threads, [&](int, Chunk r) {
+    for (int i = r.begin; i < r.end; ++i) {
+      const std::uint32_t u = to_make[static_cast<std::size_t>(i)];
+      ss.image_bounds[u] = M.bounds_of(u);
+      ss.bounds_made[u] = 1;
+    }
+  });
+}
+}  // namespace
+
+void make_boxes(ScreenScene& ss, const std::vector<char>& which, int threads) {
+  if (!ss.sparse()) return;
+  const CurveMaker& M = *ss.maker;
+  // Those without one: projected and not edge-on (whose box stays empty, as a
+  // lean scene's brief leaves it), not made yet.
+  std::vector<std::uint32_t> facets, places;
+  for (std::size_t fi = 0; fi < which.size(); ++fi) {
+    const FacetBrief& b = ss.briefs[fi];
+    if (!which[fi] || !b.projected || b.facing == Facing::EdgeOn || b.box.xmin() <= b.box.xmax()) continue;
+    facets.push_back(static_cast<std::uint32_t>(fi));
+    for (const std::uint32_t id : M.wf.facets[fi].v) places.push_back(M.local[id]);
+  }
+  make_bounds(ss, places, threads);
+  parallel_chunks(static_cast<int>(facets.size()), 4096, threads, [&](int, Chunk r) {
+    for (int i = r.begin; i < r.end; ++i) {
+      const std::size_t fi = facets[static_cast<std::size_t>(i)];
+      const auto& v = M.wf.facets[fi].v;
+      ss.briefs[fi].box = corners_box(ss, v.size(), [&](std::size_t k) -> const P3& { return ss.images.data()[M.local[v[k]]]; });
+    }
+  });
+}
+
+std::vector<CGAL::Bbox_2> world_run_boxes(ScreenScene& ss, int run, int threads) {
+  if (!ss.sparse()) return {};
+  const CurveMaker& M = *ss.maker;
+  const std::vector<Vec3>& vertices = M.scene->vertices;
+  const int nf = static_cast<int>(M.wf.facets.size()), runs = (nf + run - 1) / run;
+  std::vector<CGAL::Bbox_2> box(static_cast<std::size_t>(runs));   // (each empty)
+  std::vector<char> unbounded(static_cast<std::size_t>(runs), 0);
+  // The screen scale 2^k as an interval factor (where it is a double; else no
+  // bound: every run reaches everything).
+  const bool scalable = M.k >= -1022 && M.k <= 1023;
+  const double scale = scalable ? std::ldexp(1.0, M.k) : 0;
+  parallel_chunks(runs, 64, threads, [&](int, Chunk r) {
+    CGAL::Protect_FPU_rounding<true> upward;
+    for (int k = r.begin; k < r.end; ++k) {
+      // The world box of the run's corners (exact: minima and maxima of doubles).
+      double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+      for (int fi = k * run; fi < std::min(nf, (k + 1) * run); ++fi)
+        for (const std::uint32_t id : M.wf.facets[static_cast<std::size_t>(fi)].v) {
+          const Vec3& p = vertices[id];
+          const double c[3] = {p.x, p.y, p.z};
+          for (int a = 0; a < 3; ++a) {
+            lo[a] = std::min(lo[a], c[a]);
+            hi[a] = std::max(hi[a], c[a]);
+          }
+        }
+      if (lo[0] > hi[0]) continue;   // (no corner: an empty box)
+      // Screen x and y over it, on intervals (an affine map: they hold its image).
+      Interval xy[2];
+      for (int row = 0; row < 2; ++row) {
+        const auto& m = M.view->m[static_cast<std::size_t>(row)];
+        Interval v = Interval(m[3]);
+        for (int a = 0; a < 3; ++a) v += Interval(m[static_cast<std::size_t>(a)]) * Interval(lo[a], hi[a]);
+        xy[row] = v * Interval(scale);
+      }
+      const bool bounded = scalable && std::isfinite(xy[0].inf()) && std::isfinite(xy[0].sup()) &&
+                           std::isfinite(xy[1].inf()) && std::isfinite(xy[1].sup());
+      if (bounded) box[static_cast<std::size_t>(k)] = CGAL::Bbox_2(xy[0].inf(), xy[1].inf(), xy[0].sup(), xy[1].sup());
+      else unbounded[static_cast<std::size_t>(k)] = 1;
+    }
+  });
+  // (Where the intervals overflow: the run's facets' own boxes.)
+  if (std::find(unbounded.begin(), unbounded.end(), 1) == unbounded.end()) return box;
+  std::vector<char> which(static_cast<std::size_t>(nf), 0);
+  for (int fi = 0; fi < nf; ++fi) which[static_cast<std::size_t>(fi)] = unbounded[static_cast<std::size_t>(fi / run)];
+  make_boxes(ss, which, threads);
+  for (int fi = 0; fi < nf; ++fi)
+    if (which[static_cast<std::size_t>(fi)]) box[static_cast<std::size_t>(fi / run)] += ss.briefs[static_cast<std::size_t>(fi)].box;
+  return box;
 }
 
 const WorldFacets* world_facets_of(const ScreenScene& ss) { return ss.maker ? &ss.maker->wf : nullptr; }

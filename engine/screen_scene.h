@@ -165,6 +165,12 @@ struct ScreenScene {
   // Where the images are left for later (a lines-only drawing: make_images makes
   // those it needs), each one's intervals, by place; else empty.
   std::vector<ImageBounds> image_bounds;
+  // Where even those intervals are made only when asked (sparse(): a lean
+  // orthographic scene, whose lines-only drawing reads a few per cent of its
+  // vertices), per place, whether they are made (make_bounds); an interval not
+  // made is computed where it is read (kept_bounds), the same values.
+  std::vector<char> bounds_made;
+  bool sparse() const { return !bounds_made.empty(); }
   // The facets, by index (a curve's sharers, a cell's list): each one's Facet
   // (facet()), or, where a lines-only drawing keeps only briefs (lean(): most
   // facets lie far from its lines), those make_facets made, at made_at's places.
@@ -220,14 +226,19 @@ struct ScreenScene {
   // Image p's intervals as it had them when made (kept ones, where the images are
   // left for later: the same values, read without the image), for a corner or a
   // curve's end; any other point's own.
-  const ImageBounds* kept_bounds(const P3& p) const {
+  // kept_place: p's place among the images where those are left for later, else -1.
+  std::ptrdiff_t kept_place(const P3& p) const {
     const std::less<const P3*> before;
-    if (image_bounds.empty() || before(&p, images.data()) || !before(&p, images.data() + images.size())) return nullptr;
-    return &image_bounds[static_cast<std::size_t>(&p - images.data())];
+    if (image_bounds.empty() || before(&p, images.data()) || !before(&p, images.data() + images.size())) return -1;
+    return &p - images.data();
   }
-  Interval x_of(const P3& p) const { const ImageBounds* b = kept_bounds(p); return b ? b->x : approx_of(p.x); }
-  Interval y_of(const P3& p) const { const ImageBounds* b = kept_bounds(p); return b ? b->y : approx_of(p.y); }
-  Interval z_of(const P3& p) const { const ImageBounds* b = kept_bounds(p); return b ? b->z : approx_of(p.z); }
+  ImageBounds kept_bounds(std::ptrdiff_t u) const {
+    const auto at = static_cast<std::size_t>(u);
+    return bounds_made.empty() || bounds_made[at] ? image_bounds[at] : bounds_now(at);
+  }
+  Interval x_of(const P3& p) const { const auto u = kept_place(p); return u >= 0 ? kept_bounds(u).x : approx_of(p.x); }
+  Interval y_of(const P3& p) const { const auto u = kept_place(p); return u >= 0 ? kept_bounds(u).y : approx_of(p.y); }
+  Interval z_of(const P3& p) const { const auto u = kept_place(p); return u >= 0 ? kept_bounds(u).z : approx_of(p.z); }
 
  private:
   std::uint32_t made_place(std::size_t fi) const {
@@ -236,6 +247,7 @@ struct ScreenScene {
     return at;
   }
   [[noreturn]] static void not_made();
+  ImageBounds bounds_now(std::size_t u) const;   // (the maker's bounds_of)
 };
 
 // Facet fi's solid (ScreenScene::solid), or -1; and whether every occluder is in
@@ -318,6 +330,18 @@ void make_images(ScreenScene& ss, const std::vector<std::uint32_t>& places, int 
 // Makes the images of facet fi's corners for every facet `which` marks (every
 // facet where `which` is empty).
 void make_corner_images(ScreenScene& ss, const std::vector<char>& which, int threads);
+
+// In a sparse scene (ScreenScene::sparse), makes the intervals of the images at
+// `places` that are not made yet, and the boxes of the facets `which` marks that
+// have none yet (their briefs', as a lean scene's are made), in parallel. Else
+// nothing: every brief has its box.
+void make_bounds(ScreenScene& ss, const std::vector<std::uint32_t>& places, int threads);
+void make_boxes(ScreenScene& ss, const std::vector<char>& which, int threads);
+// In a sparse scene, the boxes of runs of `run` consecutive facets (every
+// facet's, occluder or not; the last run may be shorter): each holds the box of
+// every facet of its run, from their world corners' box (intervals: no image
+// made; where those overflow, the facets' own boxes, made). Else empty.
+std::vector<CGAL::Bbox_2> world_run_boxes(ScreenScene& ss, int run, int threads);
 
 // In a lean scene (ScreenScene::lean), makes the Facets of the facets `which`
 // marks (every facet where `which` is empty) that are not made yet, from their

@@ -423,7 +423,9 @@ TEST(LinesOnly, ImagesLeftForLaterKeepTheIntervalsTheyGet) {
     const std::size_t n = ss.images.size();
     ASSERT_EQ(!ss.image_bounds.empty(), cases[k].later) << "case " << k;
     if (!cases[k].later) continue;
-    const std::vector<vismap::engine::ImageBounds> kept = ss.image_bounds;
+    // (Kept, or where a sparse scene makes them only when asked, computed when read.)
+    std::vector<vismap::engine::ImageBounds> kept(n);
+    for (std::size_t u = 0; u < n; ++u) kept[u] = ss.kept_bounds(static_cast<std::ptrdiff_t>(u));
     std::size_t made = 0;
     for (std::size_t u = 0; u < n; ++u) made += ss.images.made(u);
     EXPECT_LT(made, n / 2) << "case " << k << ": most images are left for later (" << made << " of " << n << " made)";
@@ -441,6 +443,45 @@ TEST(LinesOnly, ImagesLeftForLaterKeepTheIntervalsTheyGet) {
           << "case " << k << ", image " << u;
     }
   }
+}
+
+// An orthographic lines-only drawing of one solid (a height field, a closed
+// solid seen from outside) is sparse: it makes the intervals of the vertex
+// images and the boxes of the faces only near its drawn lines, finding those
+// faces from runs of faces boxed in the world (stat image_bounds_made). Its
+// segments are the whole map's, on one thread and three: obliquely, grazing,
+// along an axis, at two grid sizes, and at a scale far from 1.
+TEST(LinesOnly, SparseDrawingsBoxOnlyTheFacesNearTheirLines) {
+  vismap::Scene terrain = hills(40);
+  vismap::Scene huge = terrain;
+  for (vismap::Vec3& v : huge.vertices) v = {v.x * 0x1p100, v.y * 0x1p100, v.z * 0x1p100};
+  struct Case {
+    const vismap::Scene* scene;
+    vismap::Camera camera;
+    double crease;
+  };
+  const std::vector<Case> cases = {{&terrain, ortho({-1, -2, -3}), 30},     {&terrain, ortho({-1, -0.3, -0.18}), 30},
+                                   {&terrain, ortho({0, 0, -1}), 30},        {&terrain, ortho({-1, -2, -3}), 10},
+                                   {&huge, ortho({-1, -2, -3}), 30}};
+  for (std::size_t k = 0; k < cases.size(); ++k)
+    for (double c : {1.0, 4.0}) {
+      const Case& t = cases[k];
+      const vismap::View view = vismap::make_view(t.camera, *t.scene);
+      vismap::Options whole;
+      whole.grid_c = c;
+      whole.crease_deg = t.crease;
+      whole.threads = 1;
+      vismap::Options lines = whole;
+      lines.regions = false;
+      const std::string what = "case " + std::to_string(k) + ", c " + std::to_string(c);
+      const vismap::VisibilityMap m = vismap::visibility_franklin(*t.scene, view, lines);
+      EXPECT_GT(m.stats.counted("image_bounds_made"), 0) << what << ": not sparse";
+      EXPECT_GT(m.segments.size(), 5u) << what;
+      const std::string drawn = segments_of(map_json(*t.scene, view, lines));
+      EXPECT_EQ(drawn, segments_of(map_json(*t.scene, view, whole))) << what << ": the lines alone differ from the whole map's";
+      lines.threads = 3;
+      EXPECT_EQ(segments_of(map_json(*t.scene, view, lines)), drawn) << what << ": three threads differ from one";
+    }
 }
 
 // ---- the grid is scaffolding: any c gives the same map ------------------------------
