@@ -833,11 +833,11 @@ bool CurveMaker::same_image(std::uint32_t a, std::uint32_t b) const {
 }
 
 namespace {
-// The images at `places` (any order, repeats allowed) that are not made yet,
-// made in parallel, each on one thread, in the order of their places.
 // (Sparse scenes: the intervals of the images at places, made where not yet.)
 void make_bounds_of(const CurveMaker& M, ScreenScene& ss, const std::vector<std::uint32_t>& places, int threads);
 
+// The images at `places` (any order, repeats allowed) that are not made yet,
+// made in parallel, each on one thread, in the order of their places.
 void make_images_of(const CurveMaker& M, ImageTable& images, const std::vector<std::uint32_t>& places, int threads) {
   std::vector<char> wanted(images.size(), 0);
   for (const std::uint32_t u : places) wanted[u] = !images.made(u);
