@@ -545,7 +545,9 @@ struct CurveMaker {
   // The image of the vertex at place u (in front of the near plane), made now.
   P3 make_image(std::uint32_t u) const;
   // Its intervals, as the image made would have them.
-  ImageBounds bounds_of(std::uint32_t u) const;
+  // (Never inlined: every interval read may call it, where the intervals are
+  // made only where asked; inlined there, GCC took 25 minutes on this file.)
+  [[gnu::noinline]] ImageBounds bounds_of(std::uint32_t u) const;
   // Asks for the input vertex a few places after place u, ahead of its use: the
   // places are in screen order, not the input's, and each place's vertex was a
   // cache miss (a 10^6-triangle terrain's image bounds: 63-65 -> 56-60 ms).
