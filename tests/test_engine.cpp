@@ -293,6 +293,12 @@ vismap::Scene hills(int n) {
     }
   return scene;
 }
+
+// The scene with every coordinate times 2^e (exact: a power of two).
+vismap::Scene scaled_by_power_of_two(vismap::Scene scene, int e) {
+  for (vismap::Vec3& v : scene.vertices) v = {std::ldexp(v.x, e), std::ldexp(v.y, e), std::ldexp(v.z, e)};
+  return scene;
+}
 }  // namespace
 
 TEST(LinesOnly, OneSurfaceIsLookedAtOnlyNearItsDrawnLines) {
@@ -401,9 +407,8 @@ TEST(LinesOnly, PiecesLeftLatentOnlyWhereMostAreNotDrawn) {
 // outside, at a scale that leaves the moderate range; and where the near plane
 // cuts, every image is made at once.
 TEST(LinesOnly, ImagesLeftForLaterKeepTheIntervalsTheyGet) {
-  vismap::Scene scene = hills(40);
-  vismap::Scene huge = scene;
-  for (vismap::Vec3& v : huge.vertices) v = {v.x * 0x1p600, v.y * 0x1p600, v.z * 0x1p600};
+  const vismap::Scene scene = hills(40);
+  const vismap::Scene huge = scaled_by_power_of_two(scene, 600);
   struct Case {
     const vismap::Scene* scene;
     vismap::Camera camera;
@@ -452,9 +457,8 @@ TEST(LinesOnly, ImagesLeftForLaterKeepTheIntervalsTheyGet) {
 // segments are the whole map's, on one thread and three: obliquely, grazing,
 // along an axis, at two grid sizes, and at a scale far from 1.
 TEST(LinesOnly, SparseDrawingsBoxOnlyTheFacesNearTheirLines) {
-  vismap::Scene terrain = hills(40);
-  vismap::Scene huge = terrain;
-  for (vismap::Vec3& v : huge.vertices) v = {v.x * 0x1p100, v.y * 0x1p100, v.z * 0x1p100};
+  const vismap::Scene terrain = hills(40);
+  const vismap::Scene huge = scaled_by_power_of_two(terrain, 100);
   struct Case {
     const vismap::Scene* scene;
     vismap::Camera camera;
