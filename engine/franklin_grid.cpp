@@ -1823,13 +1823,22 @@ namespace {
 // lines-only drawing (a map vertex where exactly two edges meet, collinear,
 // drawn with the same kind and faces, is not a vertex: the spec's canonical
 // form): elsewhere the vertex is one whatever else ends there, and a curve
-// that is not drawn and only ends there changes no segment.
+// that is not drawn and only ends there changes no segment. Only the ends of
+// curves that are not drawn are asked about (where every line is drawn, as at
+// crease 0, sorting every drawn end was ~3 % of the bunny's drawing).
 std::vector<VertexId> joinable_ends(const std::vector<Curve>& curves) {
+  std::vector<VertexId> asked;   // (ends of curves not drawn)
+  for (const Curve& c : curves)
+    if (!c.drawn)
+      for (const VertexId v : {c.vs, c.vt})
+        if (v >= 0) asked.push_back(v);
+  std::sort(asked.begin(), asked.end());
+  asked.erase(std::unique(asked.begin(), asked.end()), asked.end());
   std::vector<std::pair<VertexId, const SmallInts*>> ends;   // (vertex, a drawn curve's faces)
   for (const Curve& c : curves)
     if (c.drawn)
       for (const VertexId v : {c.vs, c.vt})
-        if (v >= 0) ends.emplace_back(v, &c.faces);
+        if (v >= 0 && std::binary_search(asked.begin(), asked.end(), v)) ends.emplace_back(v, &c.faces);
   std::sort(ends.begin(), ends.end(), [](const auto& x, const auto& y) {
     return x.first != y.first ? x.first < y.first : *x.second < *y.second;
   });
@@ -1954,6 +1963,7 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
     };
     each_cell([&](Cutter& cutter, const Cell& cell) {
       each_pair(cutter, cell, [&](int a, int b) { return drawn[a] || drawn[b]; }, [&](int a, int b, Contact how) {
+        if (drawn[a] && drawn[b]) return;   // (both needed already)
         if (how == Contact::kSharedEnd && !at_joinable_end(a, b)) return;
         if (how == Contact::kCrossing && drawn[a] != drawn[b]) {
           // (Counted in the cell holding it, as the cut is; its box as made here,
