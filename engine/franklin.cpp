@@ -89,13 +89,16 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   // (For a lines-only drawing, curves that are not drawn stay latent until step 7.)
   ScreenScene ss = make_screen_scene(scene, view, run, st, /*latent=*/!opt.regions, /*cull=*/true, world);
   st.time("project_and_cull", clock.lap());
+  // (A lines-only drawing that draws most edges anyway is made as a whole map
+  // from here on, and only its segments written: make_screen_scene tells.)
+  const bool whole = !ss.near_drawn_lines;
 
   // (Facets and curves are already in screen order: make_screen_scene.)
   // 2-4. The variable grid: B = c * min(sqrt(N), 1/L) cells per side.
   Grid grid = make_grid(ss, opt.grid_c, threads, st);
   // 5. Faces into cells, with each cell's blocking face; 5c drops faces hidden everywhere
   // (for a lines-only drawing, where no faces pierce each other: only near the drawn curves).
-  bucket_facets(grid, ss, opt.regions, threads, st);
+  bucket_facets(grid, ss, whole, threads, st);
   // 6. Remove what each cell's final blocking face hides.
   prune_facets(grid, ss, threads, st);
   st.time("faces_to_cells", clock.lap());
@@ -105,13 +108,13 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   std::vector<CellRange>().swap(grid.facet_range);   // (what the pair search needed of step 5)
   // 7. Edges into the cells they cross, unless behind the blocking face; 7b drops hidden ones
   // (for a lines-only drawing, edges that are not drawn only where a drawn one is).
-  bucket_curves(grid, ss, opt.regions, threads, st);
+  bucket_curves(grid, ss, whole, threads, st);
   if (ss.sparse()) st.count("image_bounds_made", std::count(ss.bounds_made.begin(), ss.bounds_made.end(), 1));
   st.time("edges_to_cells", clock.lap());
 
   // 8. Intersect the edges pairwise within each cell (for a lines-only drawing:
   // the pairs a drawn line's pieces depend on).
-  Cuts cuts = cut_curves(grid, ss, opt.regions, threads, st);
+  Cuts cuts = cut_curves(grid, ss, whole, threads, st);
   st.time("intersections", clock.lap());
 
   // 9, 11. Cut edges into pieces; each piece's visibility, and the nearest face on each side.

@@ -1137,6 +1137,37 @@ std::size_t make_latent_now_where_most_are_drawn(std::vector<CurveMaker::Verdict
     if (v == V::Latent) v = V::Drawn;   // (made as make() makes any piece: drawn or not, by its kind)
   return static_cast<std::size_t>(drawn + latent);
 }
+// Whether a lines-only drawing draws most edges anyway: on a sample of the edges
+// between two faces, those that are creases at its angle against those that are
+// smooth (all of them drawn where smooth ones are), told on doubles from the
+// facets' spanning corners. Such a drawing is made as a whole map, and only its
+// segments written: looking near its lines first (judging each piece, making
+// planes and curves late, telling which curves its lines need) costs more than
+// it skips there (bunny00 close-up at crease 0: as many instructions as the
+// whole map, and more time). The drawing is the same either way: only the time
+// depends on this. (The rule that makes latent pieces now, above, decides on
+// the judged pieces themselves, too late to skip the rest.)
+bool draws_most_edges(const Scene& scene, const WorldFacets& wf, const std::vector<WorldPiece>& pieces,
+                      double cos_crease, bool smooth) {
+  if (smooth) return true;
+  auto normal = [&](int f) {
+    const std::array<std::uint32_t, 3> id = spanning_ids(scene, wf.facets[static_cast<std::size_t>(f)]);
+    return world::normal_of<double>(scene.vertices[id[0]], scene.vertices[id[1]], scene.vertices[id[2]]);
+  };
+  auto dot = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  };
+  std::size_t creases = 0, smooth_edges = 0;
+  const std::size_t step = std::max<std::size_t>(1, pieces.size() / 16384);
+  for (std::size_t i = 0; i < pieces.size(); i += step) {
+    const auto& s = pieces[i].sharers;
+    if (s.size() != 2 || wf.facets[static_cast<std::size_t>(s[0].facet)].face == wf.facets[static_cast<std::size_t>(s[1].facet)].face)
+      continue;   // (a border, or a polygon's own diagonal: never smooth, never a crease)
+    const std::array<double, 3> n1 = normal(s[0].facet), n2 = normal(s[1].facet);
+    ++(dot(n1, n2) < cos_crease * std::sqrt(dot(n1, n1) * dot(n2, n2)) ? creases : smooth_edges);
+  }
+  return creases > 0 && creases >= smooth_edges;
+}
 }  // namespace
 
 ScreenScene make_screen_scene(const Scene& scene, const View& view, const Options& opt,
@@ -1181,6 +1212,10 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   if (!world && !cull) M.pieces = match_edges(scene, M.wf, /*cell_bits=*/20, threads);
   WorldFacets& wf = M.wf;
   std::vector<WorldPiece>& pieces = M.pieces;
+  if (latent && draws_most_edges(scene, wf, pieces, M.cos_crease, M.smooth)) {
+    latent = false;
+    stats.count("lines_only_as_whole_map", 1);
+  }
   stats.count("faces_degenerate_dropped", wf.degenerate);
   stats.count("faces_nonplanar_fanned", wf.nonplanar);
   stats.count("faces_nonconvex_triangulated", wf.nonconvex);
@@ -1540,7 +1575,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   stats.count("edges_culled_back", dropped_hidden);
   stats.count("edges_culled_outside_view", dropped_clipped);
   stats.count("edges_seen_end_on", dropped_point);
-  ss.planes_later = latent;
+  ss.planes_later = ss.near_drawn_lines = latent;
   if (latent) {
     stats.count("curves_latent", static_cast<std::int64_t>(ss.latent_piece.size()));
     // (Kept while it has latent curves or images to make; else freed now, as for a whole map.)
