@@ -1137,6 +1137,7 @@ std::size_t make_latent_now_where_most_are_drawn(std::vector<CurveMaker::Verdict
     if (v == V::Latent) v = V::Drawn;   // (made as make() makes any piece: drawn or not, by its kind)
   return static_cast<std::size_t>(drawn + latent);
 }
+
 // Whether a lines-only drawing draws most edges anyway: on a sample of the edges
 // between two faces, those that are creases at its angle against those that are
 // smooth (all of them drawn where smooth ones are), told on doubles from the
