@@ -91,7 +91,7 @@ VisibilityMap VISMAP_FRANKLIN_ENTRY(const Scene& scene, const View& view, const 
   st.time("project_and_cull", clock.lap());
   // (A lines-only drawing that draws most edges anyway is made as a whole map
   // from here on, and only its segments written: make_screen_scene tells.)
-  const bool whole = !ss.near_drawn_lines;
+  const bool whole = !ss.near_drawn_lines();
 
   // (Facets and curves are already in screen order: make_screen_scene.)
   // 2-4. The variable grid: B = c * min(sqrt(N), 1/L) cells per side.

@@ -1139,9 +1139,9 @@ std::size_t make_latent_now_where_most_are_drawn(std::vector<CurveMaker::Verdict
 }
 
 // Whether a lines-only drawing draws most edges anyway: on a sample of the edges
-// between two faces, those that are creases at its angle against those that are
-// smooth (all of them drawn where smooth ones are), told on doubles from the
-// facets' spanning corners. Such a drawing is made as a whole map, and only its
+// between two faces, those that are creases at its angle (is_crease, on the
+// facets' spanning corners) against those that are smooth (all of them drawn
+// where smooth ones are). Such a drawing is made as a whole map, and only its
 // segments written: looking near its lines first (judging each piece, making
 // planes and curves late, telling which curves its lines need) costs more than
 // it skips there (bunny00 close-up at crease 0: as many instructions as the
@@ -1151,12 +1151,9 @@ std::size_t make_latent_now_where_most_are_drawn(std::vector<CurveMaker::Verdict
 bool draws_most_edges(const Scene& scene, const WorldFacets& wf, const std::vector<WorldPiece>& pieces,
                       double cos_crease, bool smooth) {
   if (smooth) return true;
-  auto normal = [&](int f) {
+  auto spanning = [&](int f) {
     const std::array<std::uint32_t, 3> id = spanning_ids(scene, wf.facets[static_cast<std::size_t>(f)]);
-    return world::normal_of<double>(scene.vertices[id[0]], scene.vertices[id[1]], scene.vertices[id[2]]);
-  };
-  auto dot = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    return Spanning{scene.vertices[id[0]], scene.vertices[id[1]], scene.vertices[id[2]]};
   };
   std::size_t creases = 0, smooth_edges = 0;
   const std::size_t step = std::max<std::size_t>(1, pieces.size() / 16384);
@@ -1164,8 +1161,7 @@ bool draws_most_edges(const Scene& scene, const WorldFacets& wf, const std::vect
     const auto& s = pieces[i].sharers;
     if (s.size() != 2 || wf.facets[static_cast<std::size_t>(s[0].facet)].face == wf.facets[static_cast<std::size_t>(s[1].facet)].face)
       continue;   // (a border, or a polygon's own diagonal: never smooth, never a crease)
-    const std::array<double, 3> n1 = normal(s[0].facet), n2 = normal(s[1].facet);
-    ++(dot(n1, n2) < cos_crease * std::sqrt(dot(n1, n1) * dot(n2, n2)) ? creases : smooth_edges);
+    ++(is_crease(spanning(s[0].facet), spanning(s[1].facet), cos_crease) ? creases : smooth_edges);
   }
   return creases > 0 && creases >= smooth_edges;
 }
@@ -1576,7 +1572,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   stats.count("edges_culled_back", dropped_hidden);
   stats.count("edges_culled_outside_view", dropped_clipped);
   stats.count("edges_seen_end_on", dropped_point);
-  ss.planes_later = ss.near_drawn_lines = latent;
+  ss.planes_later = latent;
   if (latent) {
     stats.count("curves_latent", static_cast<std::int64_t>(ss.latent_piece.size()));
     // (Kept while it has latent curves or images to make; else freed now, as for a whole map.)

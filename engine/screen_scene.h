@@ -215,9 +215,10 @@ struct ScreenScene {
   int scale_exp = 0;             // screen coordinates are the spec's times 2^scale_exp
   bool planes_later = false;     // the facets' depth planes not made yet (a lines-only drawing:
                                  // make_depth_planes makes those its cells list)
-  // Steps 5-8 may look only near the drawn lines (a lines-only drawing made
-  // from its judged pieces); false: at everything, as for a whole map.
-  bool near_drawn_lines = false;
+  // Steps 5-8 may look only near the drawn lines: a lines-only drawing made from
+  // its judged pieces, whose planes are made late (false: at everything, as for
+  // a whole map).
+  bool near_drawn_lines() const { return planes_later; }
   const std::vector<Vec3>* world = nullptr;   // the input's vertices (canonical ids index them)
   // Latent curves (lines only, when asked): edge pieces that are not drawn, each
   // known by its piece's number (latent_box: its box, made when asked) until

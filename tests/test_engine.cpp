@@ -399,7 +399,6 @@ TEST(LinesOnly, PiecesLeftLatentOnlyWhereMostAreNotDrawn) {
       EXPECT_EQ(as_whole, 0);
     } else {
       EXPECT_EQ(as_whole, 1) << "most edges drawn: made as a whole map";
-      EXPECT_EQ(latent, 0);
     }
     EXPECT_EQ(segments_of(map_json(scene, view, lines)), segments_of(map_json(scene, view, whole))) << "crease " << crease;
   }
