@@ -1104,9 +1104,9 @@ std::string json_named(vismap::VisibilityMap map, const std::vector<std::uint32_
   return vismap::to_json(map);
 }
 
-// Facets in a terrain's grid rows walk the screen: a lines-only map keeps their
-// order, where the same facets shuffled are sorted along a Morton curve (and a
-// smaller terrain's always are). The two orders give one map: the shuffled
+// Facets in a terrain's grid rows walk the screen, seen obliquely or from close
+// by in perspective: a lines-only map keeps their order, where the same facets
+// shuffled are sorted along a Morton curve (and a smaller terrain's always are). The two orders give one map: the shuffled
 // scene's, its faces named back, is the rows' (the segments of a lines-only
 // map; and a whole map's regions and segments, the rows sorted too).
 TEST(ScreenOrder, FacetsThatWalkTheScreenKeepTheirOrderAndGiveTheSameMap) {
@@ -1121,6 +1121,11 @@ TEST(ScreenOrder, FacetsThatWalkTheScreenKeepTheirOrderAndGiveTheSameMap) {
   const vismap::View view = vismap::make_view(ortho({-1, -2, -3}), rows);
   EXPECT_TRUE(vismap::engine::walk_the_screen(vismap::engine::make_world_facets(rows), rows, view));
   EXPECT_FALSE(vismap::engine::walk_the_screen(vismap::engine::make_world_facets(shuffled), shuffled, view));
+  // A close-up in perspective throws the facets near the eye's plane far over
+  // the screen: the rows still walk it, the shuffled facets still do not.
+  const vismap::View close = vismap::make_view(persp({0.5, 0.3, 0.25}, {0.5, 0.7, 0}, 60), rows);
+  EXPECT_TRUE(vismap::engine::walk_the_screen(vismap::engine::make_world_facets(rows), rows, close));
+  EXPECT_FALSE(vismap::engine::walk_the_screen(vismap::engine::make_world_facets(shuffled), shuffled, close));
   const vismap::Scene small = vismap::gen::terrain(100, 3);
   EXPECT_FALSE(vismap::engine::walk_the_screen(vismap::engine::make_world_facets(small), small,
                                                vismap::make_view(ortho({-1, -2, -3}), small)));
