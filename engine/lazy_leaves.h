@@ -157,6 +157,18 @@ struct ExactSource {
     return (row[0] == 0 || p.x == q.x) && (row[1] == 0 || p.y == q.y) && (row[2] == 0 || p.z == q.z);
   }
 
+  // Whether input vertices a and b (in front of the eye) have one screen
+  // coordinate r (0: x, 1: y), decided exactly without the images' rationals:
+  // orthographic, row r applied to both; in perspective N_a W_b = N_b W_a (N
+  // row r, W row 3; the screen scale is common), binary floats, no gcd. (A
+  // perspective view along an axis puts the edges of parts aligned with the
+  // axes on screen verticals, whose ends no interval tells equal in x.)
+  bool screen_coordinates_equal(std::uint32_t a, std::uint32_t b, int r) const {
+    if (same_screen_coordinate(a, b, r)) return true;
+    if (!perspective) return (row_at(r, a, false) - row_at(r, b, false)).sign() == 0;
+    return (row_at(r, a, false) * row_at(3, b, false) - row_at(r, b, false) * row_at(3, a, false)).sign() == 0;
+  }
+
   // In an orthographic view, the sign of the screen cross product of the images
   // of b - a and d - c (input vertices): (r.v)(u.w) - (u.v)(r.w) = (r x u).(v x w)
   // (Binet-Cauchy), r and u the rows giving x and y, v = b - a, w = d - c; the

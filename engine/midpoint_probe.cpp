@@ -46,6 +46,14 @@ bool curve_in_plane(const Facet& f, const Probe& m) {
   });
 }
 
+// Whether the curve's ends have one screen x: where both are input vertices,
+// from the world (ExactSource::screen_coordinates_equal: no rational made).
+bool same_x(const ScreenScene& ss, const Curve& cv) {
+  if (ss.exact && cv.vs >= 0 && cv.vt >= 0)
+    return ss.exact->screen_coordinates_equal(static_cast<std::uint32_t>(cv.vs), static_cast<std::uint32_t>(cv.vt), 0);
+  return CGAL::compare_x(cv.s->xy(), cv.t->xy()) == CGAL::EQUAL;
+}
+
 }  // namespace
 
 bool mostly_along_x(const Curve& cv) {
@@ -73,8 +81,7 @@ Probe probe_of(const ScreenScene& ss, const Curve& cv) {
     probe.idx = approx_of(cv.t->x) - approx_of(cv.s->x);
     probe.idy = approx_of(cv.t->y) - approx_of(cv.s->y);
   }
-  probe.x_moves =
-      probe.idx.inf() > 0 || probe.idx.sup() < 0 || CGAL::compare_x(cv.s->xy(), cv.t->xy()) != CGAL::EQUAL;
+  probe.x_moves = probe.idx.inf() > 0 || probe.idx.sup() < 0 || !same_x(ss, cv);
   return probe;
 }
 

@@ -599,6 +599,43 @@ TEST(ScreenLines, ImagesToldOnOneLineByTheWorldAreSo) {
   EXPECT_GT(told, pairs_sharing);
 }
 
+// One screen x (or y) told exactly from the world (ExactSource::
+// screen_coordinates_equal, no image's rational made): the same answer as the
+// images' exact values, N / W in perspective, for every pair of vertices of a
+// coarse lattice, seen in perspective straight down an axis from above the
+// lattice (its rows along y fall on screen verticals, whose ends no interval
+// tells equal), in perspective obliquely, and orthographically.
+TEST(ScreenLines, ScreenCoordinatesToldEqualFromTheWorldAreSo) {
+  std::mt19937_64 rng(13);
+  std::uniform_int_distribution<int> lattice(0, 3);
+  std::vector<vismap::Vec3> world;
+  for (int i = 0; i < 48; ++i) world.push_back({0.3 * lattice(rng), 0.7 * lattice(rng) + 0.1, 0.2 * lattice(rng) / 3});
+  vismap::Scene scene;
+  scene.vertices = world;
+  int equal = 0, apart = 0;
+  for (const vismap::Camera& cam : {persp({0.55, 1.2, 5}, {0.55, 1.2, 0}, 30), persp({-2, -3, 4}, {0.4, 1, 0}, 40),
+                                    ortho({-1, -2, -3})}) {
+    const vismap::View view = vismap::make_view(cam, scene);
+    vismap::exact::ExactSource source;
+    source.vertices = &world;
+    source.m = view.m;
+    source.perspective = view.perspective;
+    auto image = [&](std::uint32_t v, int r) {
+      const mpq_class n(source.row_at(r, v, false));
+      return view.perspective ? mpq_class(n / mpq_class(source.row_at(3, v, false))) : n;
+    };
+    for (std::uint32_t a = 0; a < world.size(); ++a)
+      for (std::uint32_t b = a + 1; b < world.size(); ++b)
+        for (int r : {0, 1}) {
+          const bool want = image(a, r) == image(b, r);
+          ASSERT_EQ(source.screen_coordinates_equal(a, b, r), want) << a << " " << b << " row " << r;
+          (want ? equal : apart) += 1;
+        }
+  }
+  EXPECT_GT(equal, 200);
+  EXPECT_GT(apart, 2000);
+}
+
 // The screen cross product's sign from the world (ExactSource::screen_cross_sign,
 // orthographic views): the same as on the images' exact projected values, for
 // pairs of segments between vertices of a coarse lattice (parallel ones by the
