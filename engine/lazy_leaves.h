@@ -166,6 +166,13 @@ struct ExactSource {
   bool screen_coordinates_equal(std::uint32_t a, std::uint32_t b, int r) const {
     if (same_screen_coordinate(a, b, r)) return true;
     if (!perspective) return (row_at(r, a, false) - row_at(r, b, false)).sign() == 0;
+    // (Equal in every coordinate that row r or W reads: N and W equal, with
+    // no arithmetic; those edges are most of the screen verticals.)
+    const auto &n = m[static_cast<std::size_t>(r)], &w = m[3];
+    const Vec3 &p = (*vertices)[a], &q = (*vertices)[b];
+    if ((n[0] == 0 && w[0] == 0) || p.x == q.x)
+      if ((n[1] == 0 && w[1] == 0) || p.y == q.y)
+        if ((n[2] == 0 && w[2] == 0) || p.z == q.z) return true;
     return (row_at(r, a, false) * row_at(3, b, false) - row_at(r, b, false) * row_at(3, a, false)).sign() == 0;
   }
 
