@@ -1458,21 +1458,18 @@ struct CrossingOf {
   // The exact value on integers: the eight coordinates over one common
   // denominator L (projected doubles share a power of two), the formula on their
   // numerators, one normalisation per coordinate at the end, instead of a
-  // normalised rational (gcd) at every step.
+  // normalised rational (gcd) at every step. (Other denominators: homogeneous.)
   static result_type fraction_free(const result_type& a, const result_type& b, const result_type& c,
                                    const result_type& d) {
+    // A segment parallel to each axis (a vertical edge crossing a horizontal
+    // one, as a view along an axis sees parts aligned with the axes, in
+    // perspective too): their own coordinates, with no arithmetic.
+    const mpq_class* own_x = c.x() == d.x() ? &c.x() : a.x() == b.x() ? &a.x() : nullptr;
+    const mpq_class* own_y = c.y() == d.y() ? &c.y() : a.y() == b.y() ? &a.y() : nullptr;
+    if (own_x && own_y) return result_type(*own_x, *own_y);
     const mpq_class* q[8] = {&a.x(), &a.y(), &b.x(), &b.y(), &c.x(), &c.y(), &d.x(), &d.y()};
     mpz_class L, X[8];
-    if (!over_power_of_two(q, L, X)) {
-      L = q[0]->get_den();
-      for (int i = 1; i < 8; ++i)
-        if (q[i]->get_den() != L) mpz_lcm(L.get_mpz_t(), L.get_mpz_t(), q[i]->get_den_mpz_t());
-      for (int i = 0; i < 8; ++i) {
-        if (q[i]->get_den() == L) { X[i] = q[i]->get_num(); continue; }
-        mpz_divexact(X[i].get_mpz_t(), L.get_mpz_t(), q[i]->get_den_mpz_t());
-        X[i] *= q[i]->get_num();
-      }
-    }
+    if (!over_power_of_two(q, L, X)) return homogeneous(a, b, c, d);
     const mpz_class ux = X[2] - X[0], uy = X[3] - X[1], vx = X[6] - X[4], vy = X[7] - X[5];
     const mpz_class wx = X[4] - X[0], wy = X[5] - X[1];
     const mpz_class den = ux * vy - uy * vx, num = wx * vy - wy * vx;
@@ -1490,6 +1487,41 @@ struct CrossingOf {
       return r;
     };
     return result_type(coordinate(0, X[0], ux), coordinate(1, X[1], uy));
+  }
+  // The crossing in homogeneous coordinates, where the denominators are not
+  // all powers of two (a perspective view's images, N / W, over odd parts of
+  // their W): each point (x, y) = (nx / dx, ny / dy) as (nx dy, ny dx, dx dy)
+  // (or (nx, ny, d) where dx = dy = d: mostly), the line through two points
+  // their cross product, the crossing the two lines' cross product (X, Y, W),
+  // and x = X / W, y = Y / W normalised: one gcd per coordinate, where a
+  // common denominator of the eight took an lcm of the four W's first (three
+  // gcds of products) and a division per coordinate. (A coordinate that both
+  // ends of one segment share is that segment's own, as above.)
+  static result_type homogeneous(const result_type& a, const result_type& b, const result_type& c,
+                                 const result_type& d) {
+    struct H {
+      mpz_class x, y, w;
+    };
+    auto lift = [](const result_type& p) {
+      const mpq_class &x = p.x(), &y = p.y();
+      if (x.get_den() == y.get_den()) return H{x.get_num(), y.get_num(), x.get_den()};
+      return H{x.get_num() * y.get_den(), y.get_num() * x.get_den(), x.get_den() * y.get_den()};
+    };
+    auto cross = [](const H& p, const H& r) {
+      return H{p.y * r.w - p.w * r.y, p.w * r.x - p.x * r.w, p.x * r.y - p.y * r.x};
+    };
+    const H m = cross(cross(lift(a), lift(b)), cross(lift(c), lift(d)));
+    auto coordinate = [&](const mpq_class& c0, const mpq_class& d0, const mpq_class& a0, const mpq_class& b0,
+                          const mpz_class& n) {
+      if (c0 == d0) return c0;
+      if (a0 == b0) return a0;
+      mpq_class r;
+      r.get_num() = n;
+      r.get_den() = m.w;
+      r.canonicalize();
+      return r;
+    };
+    return result_type(coordinate(c.x(), d.x(), a.x(), b.x(), m.x), coordinate(c.y(), d.y(), a.y(), b.y(), m.y));
   }
   // Where every denominator is a power of two (an orthographic view's
   // coordinates: sums of products of doubles), their common one is the largest,

@@ -1212,6 +1212,47 @@ TEST(Threads, ConcurrentUnionFindRootsAreTheLeastMembers) {
   }
 }
 
+// Where two segments cross, exactly (crossing_point's exact value), over any
+// denominators: powers of two (an orthographic view's images), odd ones that
+// differ from point to point and between x and y (a perspective view's, N / W
+// normalised), and with segments parallel to an axis, whose shared coordinate
+// the crossing keeps (one of them, or both: a vertical crossing a horizontal).
+// Against the textbook formula on rationals.
+TEST(Crossings, ExactValuesAreTheLinesCrossingOverAnyDenominators) {
+  using vismap::exact::FT;
+  using vismap::exact::P2;
+  std::mt19937_64 rng(17);
+  std::uniform_int_distribution<int> num(-4000, 4000), den(1, 999), bit(0, 20);
+  int checked = 0, kept = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    // 0: odd and other denominators, 1: powers of two, 2: a segment parallel to
+    // an axis, 3: a horizontal one and a vertical one
+    const int kind = trial % 4;
+    auto coordinate = [&] {
+      mpq_class q(num(rng), kind == 1 ? 1 << bit(rng) : den(rng));
+      q.canonicalize();
+      return q;
+    };
+    std::array<mpq_class, 8> v;
+    for (mpq_class& q : v) q = coordinate();
+    if (kind == 2) v[trial % 8 < 4 ? 6 : 7] = v[trial % 8 < 4 ? 4 : 5];   // (c, d share x or y)
+    if (kind == 3) v[3] = v[1], v[6] = v[4];
+    const mpq_class ux = v[2] - v[0], uy = v[3] - v[1], vx = v[6] - v[4], vy = v[7] - v[5];
+    const mpq_class cross = ux * vy - uy * vx;
+    if (cross == 0) continue;
+    const mpq_class lambda = ((v[4] - v[0]) * vy - (v[5] - v[1]) * vx) / cross;
+    const mpq_class want_x = v[0] + lambda * ux, want_y = v[1] + lambda * uy;
+    auto point = [&](int i) { return P2(FT(v[static_cast<std::size_t>(i)]), FT(v[static_cast<std::size_t>(i) + 1])); };
+    const P2 got = vismap::engine::crossing_point(point(0), point(2), point(4), point(6));
+    ASSERT_EQ(vismap::exact::exact_x(got), want_x) << "trial " << trial;
+    ASSERT_EQ(vismap::exact::exact_y(got), want_y) << "trial " << trial;
+    ++checked;
+    kept += kind >= 2;
+  }
+  EXPECT_GT(checked, 2900);
+  EXPECT_GT(kept, 1400);
+}
+
 // The points the threads share keep the interval they were made with once their
 // exact value is made (steady_point, crossing_point): a CGAL construction's
 // narrows then, and which thread made it first would decide which later filters
