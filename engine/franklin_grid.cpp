@@ -1,6 +1,7 @@
 #include "engine/franklin_grid.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <iterator>
@@ -1464,12 +1465,13 @@ struct CrossingOf {
     // A segment parallel to each axis (a vertical edge crossing a horizontal
     // one, as a view along an axis sees parts aligned with the axes, in
     // perspective too): their own coordinates, with no arithmetic.
-    const mpq_class* own_x = c.x() == d.x() ? &c.x() : a.x() == b.x() ? &a.x() : nullptr;
-    const mpq_class* own_y = c.y() == d.y() ? &c.y() : a.y() == b.y() ? &a.y() : nullptr;
-    if (own_x && own_y) return result_type(*own_x, *own_y);
+    // (Either coordinate alone: kept below, where the other is computed.)
+    const std::array<const mpq_class*, 2> own{c.x() == d.x() ? &c.x() : a.x() == b.x() ? &a.x() : nullptr,
+                                              c.y() == d.y() ? &c.y() : a.y() == b.y() ? &a.y() : nullptr};
+    if (own[0] && own[1]) return result_type(*own[0], *own[1]);
     const mpq_class* q[8] = {&a.x(), &a.y(), &b.x(), &b.y(), &c.x(), &c.y(), &d.x(), &d.y()};
     mpz_class L, X[8];
-    if (!over_power_of_two(q, L, X)) return homogeneous(a, b, c, d);
+    if (!over_power_of_two(q, L, X)) return homogeneous(a, b, c, d, own);
     const mpz_class ux = X[2] - X[0], uy = X[3] - X[1], vx = X[6] - X[4], vy = X[7] - X[5];
     const mpz_class wx = X[4] - X[0], wy = X[5] - X[1];
     const mpz_class den = ux * vy - uy * vx, num = wx * vy - wy * vx;
@@ -1478,8 +1480,7 @@ struct CrossingOf {
     // upright: common), that coordinate is the segment's own, already canonical
     // (no product, no gcd).
     auto coordinate = [&](int k, const mpz_class& x0, const mpz_class& u) {
-      if (X[4 + k] == X[6 + k]) return *q[4 + k];
-      if (X[k] == X[2 + k]) return *q[k];
+      if (own[static_cast<std::size_t>(k)]) return *own[static_cast<std::size_t>(k)];
       mpq_class r;
       r.get_num() = x0 * den + num * u;
       r.get_den() = scale;
@@ -1496,9 +1497,9 @@ struct CrossingOf {
   // and x = X / W, y = Y / W normalised: one gcd per coordinate, where a
   // common denominator of the eight took an lcm of the four W's first (three
   // gcds of products) and a division per coordinate. (A coordinate that both
-  // ends of one segment share is that segment's own, as above.)
+  // ends of one segment share, own[k], is that segment's, as above.)
   static result_type homogeneous(const result_type& a, const result_type& b, const result_type& c,
-                                 const result_type& d) {
+                                 const result_type& d, const std::array<const mpq_class*, 2>& own) {
     struct H {
       mpz_class x, y, w;
     };
@@ -1511,17 +1512,15 @@ struct CrossingOf {
       return H{p.y * r.w - p.w * r.y, p.w * r.x - p.x * r.w, p.x * r.y - p.y * r.x};
     };
     const H m = cross(cross(lift(a), lift(b)), cross(lift(c), lift(d)));
-    auto coordinate = [&](const mpq_class& c0, const mpq_class& d0, const mpq_class& a0, const mpq_class& b0,
-                          const mpz_class& n) {
-      if (c0 == d0) return c0;
-      if (a0 == b0) return a0;
+    auto coordinate = [&](const mpq_class* kept, const mpz_class& n) {
+      if (kept) return *kept;
       mpq_class r;
       r.get_num() = n;
       r.get_den() = m.w;
       r.canonicalize();
       return r;
     };
-    return result_type(coordinate(c.x(), d.x(), a.x(), b.x(), m.x), coordinate(c.y(), d.y(), a.y(), b.y(), m.y));
+    return result_type(coordinate(own[0], m.x), coordinate(own[1], m.y));
   }
   // Where every denominator is a power of two (an orthographic view's
   // coordinates: sums of products of doubles), their common one is the largest,

@@ -151,10 +151,16 @@ struct ExactSource {
   // many images on one screen line, whose coordinate is not a double where the
   // row's entry is not a power of two, and no interval filter tells them equal.
   bool same_screen_coordinate(std::uint32_t a, std::uint32_t b, int r) const {
-    if (perspective) return false;
-    const auto& row = m[static_cast<std::size_t>(r)];
+    return !perspective && agree_where_read(a, b, r, r);
+  }
+  // Whether input vertices a and b are equal in every world coordinate that
+  // row r or row s of the view reads (a nonzero entry): those rows then give
+  // both one value, with no arithmetic.
+  bool agree_where_read(std::uint32_t a, std::uint32_t b, int r, int s) const {
+    const auto &one = m[static_cast<std::size_t>(r)], &other = m[static_cast<std::size_t>(s)];
     const Vec3 &p = (*vertices)[a], &q = (*vertices)[b];
-    return (row[0] == 0 || p.x == q.x) && (row[1] == 0 || p.y == q.y) && (row[2] == 0 || p.z == q.z);
+    auto read = [&](std::size_t i) { return one[i] != 0 || other[i] != 0; };
+    return (!read(0) || p.x == q.x) && (!read(1) || p.y == q.y) && (!read(2) || p.z == q.z);
   }
 
   // Whether input vertices a and b (in front of the eye) have one screen
@@ -164,15 +170,11 @@ struct ExactSource {
   // perspective view along an axis puts the edges of parts aligned with the
   // axes on screen verticals, whose ends no interval tells equal in x.)
   bool screen_coordinates_equal(std::uint32_t a, std::uint32_t b, int r) const {
-    if (same_screen_coordinate(a, b, r)) return true;
-    if (!perspective) return (row_at(r, a, false) - row_at(r, b, false)).sign() == 0;
-    // (Equal in every coordinate that row r or W reads: N and W equal, with
-    // no arithmetic; those edges are most of the screen verticals.)
-    const auto &n = m[static_cast<std::size_t>(r)], &w = m[3];
-    const Vec3 &p = (*vertices)[a], &q = (*vertices)[b];
-    if ((n[0] == 0 && w[0] == 0) || p.x == q.x)
-      if ((n[1] == 0 && w[1] == 0) || p.y == q.y)
-        if ((n[2] == 0 && w[2] == 0) || p.z == q.z) return true;
+    if (!perspective)
+      return agree_where_read(a, b, r, r) || (row_at(r, a, false) - row_at(r, b, false)).sign() == 0;
+    // (N and W equal where the two agree in every coordinate that row r or W
+    // reads: most screen verticals.)
+    if (agree_where_read(a, b, r, 3)) return true;
     return (row_at(r, a, false) * row_at(3, b, false) - row_at(r, b, false) * row_at(3, a, false)).sign() == 0;
   }
 
