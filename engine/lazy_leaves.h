@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "engine/exact_kernel.h"
+#include "engine/image_values.h"
 #include "engine/scene.h"
 
 namespace vismap::exact {
@@ -145,6 +146,12 @@ struct ExactSource {
 
   // Row r of the view applied to input vertex v, times 2^k if scaled (Mpzf below).
   CGAL::Mpzf row_at(int r, std::uint32_t v, bool scaled) const;
+  // Input vertex v's image coordinate r as the canonical rational written: row
+  // r applied to it, times 2^k if scaled; in perspective (N / W) 2^k, W row 3.
+  // Machine integers where the values fit (image_values.h), else binary floats
+  // and GMP's rationals.
+  mpq_class image_exact(int r, std::uint32_t v, bool scaled) const;
+  mpq_class perspective_exact(int r, std::uint32_t v) const;
   // Whether input vertices a and b have one screen coordinate r (0: x, 1: y) in
   // an orthographic view, told by the world with no arithmetic: equal in every
   // coordinate the row reads (only where it says so). A view along an axis puts
@@ -263,6 +270,25 @@ inline CGAL::Mpzf ExactSource::row_at(int r, std::uint32_t v, bool scaled) const
   return projected_mpzf(m[static_cast<std::size_t>(r)], (*vertices)[v], scaled ? k : 0);
 }
 
+inline mpq_class ExactSource::image_exact(int r, std::uint32_t v, bool scaled) const {
+  mpq_class q;
+  if (Dyadic n; row_dyadic(m[static_cast<std::size_t>(r)], (*vertices)[v], n))
+    set_dyadic(q.get_mpq_t(), n, scaled ? k : 0);
+  else
+    q = mpq_class(row_at(r, v, scaled));
+  return q;
+}
+
+inline mpq_class ExactSource::perspective_exact(int r, std::uint32_t v) const {
+  mpq_class q;
+  const Vec3& p = (*vertices)[v];
+  if (Dyadic n, w; row_dyadic(m[static_cast<std::size_t>(r)], p, n) && row_dyadic(m[3], p, w) && w.m != 0)
+    set_quotient(q.get_mpq_t(), n, w, k);
+  else
+    q = mpq_class(row_at(r, v, true)) / mpq_class(row_at(3, v, false));
+  return q;
+}
+
 #ifndef VISMAP_FLOAT_KERNEL
 using ExactRep = CGAL::Lazy_exact_nt_rep<mpq_class>;
 static_assert(std::is_same_v<FT, CGAL::Lazy_exact_nt<mpq_class>>, "the leaves below build mpq_class values");
@@ -293,7 +319,7 @@ class SourceLeaf : public ExactRep {
 class ProjectedRep final : public SourceLeaf {
  public:
   using SourceLeaf::SourceLeaf;
-  void update_exact() const override { set_exact(mpq_class(source_->row_at(row_, item_, scaled_))); }
+  void update_exact() const override { set_exact(source_->image_exact(row_, item_, scaled_)); }
 };
 
 // A perspective screen coordinate of input vertex item_, (N / W) * 2^k with N
@@ -302,9 +328,7 @@ class ProjectedRep final : public SourceLeaf {
 class PerspectiveRep final : public SourceLeaf {
  public:
   using SourceLeaf::SourceLeaf;
-  void update_exact() const override {
-    set_exact(mpq_class(source_->row_at(row_, item_, true)) / mpq_class(source_->row_at(3, item_, false)));
-  }
+  void update_exact() const override { set_exact(source_->perspective_exact(row_, item_)); }
 };
 
 // One coefficient of facet item_'s depth plane (row_ 0: a, 1: b, 2: c), made

@@ -636,6 +636,59 @@ TEST(ScreenLines, ScreenCoordinatesToldEqualFromTheWorldAreSo) {
   EXPECT_GT(apart, 2000);
 }
 
+// A vertex image's exact coordinate (ExactSource::image_exact, perspective_exact:
+// machine integers where the values fit, image_values.h) is the canonical
+// rational of the row applied to the vertex, times 2^k, over row 3 in
+// perspective, as GMP makes it from binary floats: for rows and points of
+// doubles of every kind (negative, zero, subnormal, huge, exponents close
+// together or far apart: both ways taken) and scales up and down.
+TEST(ImageValues, ExactCoordinatesAreTheRowsOverW) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::uniform_int_distribution<int> spread(-40, 40), kind(0, 15);
+  auto any = [&]() {
+    switch (kind(rng)) {
+      case 0: return 0.0;
+      case 1: return 5e-324 * (1 + kind(rng));
+      case 2: return std::ldexp(unit(rng), 900);
+      case 3: return std::ldexp(unit(rng), -900);
+      case 4: return 0.5;
+      default: return std::ldexp(unit(rng), spread(rng));
+    }
+  };
+  std::vector<vismap::Vec3> world;
+  for (int i = 0; i < 400; ++i) world.push_back({any(), any(), any()});
+  int fitted = 0, not_fitted = 0;
+  for (int view = 0; view < 40; ++view) {
+    vismap::exact::ExactSource source;
+    source.vertices = &world;
+    for (auto& row : source.m)
+      for (double& x : row) x = any();
+    source.k = std::vector<int>{0, 3, -5, 40, -70}[static_cast<std::size_t>(view % 5)];
+    for (std::uint32_t v = 0; v < world.size(); ++v) {
+      vismap::exact::Dyadic d;
+      (vismap::exact::row_dyadic(source.m[0], world[v], d) ? fitted : not_fitted) += 1;
+      for (int r : {0, 1}) {
+        auto canonical = [](const mpq_class& q) {
+          mpq_class c = q;
+          c.canonicalize();
+          return c.get_num() == q.get_num() && c.get_den() == q.get_den();
+        };
+        const mpq_class image = source.image_exact(r, v, view % 2 == 0);
+        ASSERT_EQ(image, mpq_class(source.row_at(r, v, view % 2 == 0))) << "view " << view << " vertex " << v;
+        ASSERT_TRUE(canonical(image));
+        const mpq_class w(source.row_at(3, v, false));
+        if (w == 0) continue;
+        const mpq_class quotient = source.perspective_exact(r, v);
+        ASSERT_EQ(quotient, mpq_class(mpq_class(source.row_at(r, v, true)) / w)) << "view " << view << " vertex " << v;
+        ASSERT_TRUE(canonical(quotient));
+      }
+    }
+  }
+  EXPECT_GT(fitted, 1000);
+  EXPECT_GT(not_fitted, 1000);
+}
+
 // The screen cross product's sign from the world (ExactSource::screen_cross_sign,
 // orthographic views): the same as on the images' exact projected values, for
 // pairs of segments between vertices of a coarse lattice (parallel ones by the
