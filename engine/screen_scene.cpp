@@ -800,9 +800,9 @@ P3 CurveMaker::make_image(std::uint32_t u) const {
 #ifdef VISMAP_FLOAT_KERNEL
   return P3{perspective_number(*exact, id, 0), perspective_number(*exact, id, 1), perspective_number(*exact, id, 2)};
 #else
-  const Interval w = w_interval(*exact, id);
-  return P3{perspective_number(*exact, id, 0, w), perspective_number(*exact, id, 1, w),
-            perspective_number(*exact, id, 2, w)};
+  const std::array<Interval, 3> q = perspective_intervals(*exact, id, w_interval(*exact, id));
+  return P3{perspective_number(*exact, id, 0, q[0]), perspective_number(*exact, id, 1, q[1]),
+            perspective_number(*exact, id, 2, q[2])};
 #endif
 }
 
@@ -815,12 +815,14 @@ ImageBounds CurveMaker::bounds_of(std::uint32_t u) const {
   ImageBounds b;
   Interval* out[3] = {&b.x, &b.y, &b.z};
   const Vec3& p = scene->vertices[id];
-  const Interval w = view->perspective ? w_interval(*exact, id) : Interval(1);   // (W's, shared by the three)
-  for (int r = 0; r < 3; ++r) {
-    double d;
-    *out[r] = view->perspective                    ? perspective_interval(*exact, id, r, w)
-              : exact_in_doubles(view->m[r], p, d) ? scaled_interval(d, k)
-                                                   : projected_interval(*exact, id, r, true);
+  if (view->perspective) {
+    const std::array<Interval, 3> q = perspective_intervals(*exact, id, w_interval(*exact, id));
+    b = {q[0], q[1], q[2]};
+  } else {
+    for (int r = 0; r < 3; ++r) {
+      double d;
+      *out[r] = exact_in_doubles(view->m[r], p, d) ? scaled_interval(d, k) : projected_interval(*exact, id, r, true);
+    }
   }
   // (An unbounded interval: the point made exact at once, as steady_point
   // does, which narrows the coordinates' intervals. The image's own, then.)
