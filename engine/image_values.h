@@ -19,7 +19,7 @@ namespace vismap::exact {
 
 __extension__ typedef __int128 Int128;
 
-// m 2^e exactly: m odd (or 0, e then 0), |m| < 2^125.
+// m 2^e exactly: m odd (or 0, e then 0), |m| < 2^126.
 struct Dyadic {
   Int128 m = 0;
   long e = 0;
