@@ -5,7 +5,7 @@
 // (no gcd: its denominator is a power of two), a perspective one the quotient of
 // two such (N / W: one gcd, of two odd integers). GMP and CGAL's Mpzf took the
 // same values through binary floats, two rationals and a rational division (for
-// a perspective coordinate about three times the instructions). Where a value
+// a perspective coordinate about twice the instructions: 4.7 k against 2.4 k). Where a value
 // does not fit (the products' exponents far apart) the caller takes that way.
 #pragma once
 #include <gmp.h>
