@@ -192,6 +192,97 @@ bool curve_behind(const Curve& cv, const Facet& b, const std::vector<Vec3>* worl
   return depth_above(*cv.s, b, world, cv.vs) == CGAL::POSITIVE && depth_above(*cv.t, b, world, cv.vt) == CGAL::POSITIVE;
 }
 
+// The part of a curve in a closed cell: its two ends, each enclosed in a box
+// (Liang-Barsky clipping of the end points' intervals, under the caller's
+// upward rounding); false where the intervals show no part (a curve listed in
+// a cell its box reaches only by rounding). A box spans the cell where a
+// direction's sign is unknown.
+struct CellPart {
+  std::array<Interval, 2> x, y;   // end k in [x[k].inf, x[k].sup] x [y[k].inf, y[k].sup]
+  CGAL::Bbox_2 box() const {
+    return {std::min(x[0].inf(), x[1].inf()), std::min(y[0].inf(), y[1].inf()), std::max(x[0].sup(), x[1].sup()),
+            std::max(y[0].sup(), y[1].sup())};
+  }
+};
+bool part_in_cell(const Curve& cv, const std::array<Corner, 4>& c, CellPart& part) {
+  const Interval sx = approx_of(cv.s->x), sy = approx_of(cv.s->y);
+  const Interval dx = approx_of(cv.t->x) - sx, dy = approx_of(cv.t->y) - sy;
+  // The part is s + l (t - s) for l in [enter, leave], enter = max(0, the
+  // parameters where it enters the slabs), leave = min(1, where it leaves):
+  // each bounded below and above.
+  double enter_lo = 0, enter_hi = 0, leave_lo = 1, leave_hi = 1;
+  auto slab = [&](const Interval& s, const Interval& d, double lo, double hi) {
+    if (d.inf() > 0 || d.sup() < 0) {
+      const Interval a = (Interval(lo) - s) / d, b = (Interval(hi) - s) / d;
+      const Interval& in = d.inf() > 0 ? a : b;
+      const Interval& out = d.inf() > 0 ? b : a;
+      enter_lo = std::max(enter_lo, in.inf()), enter_hi = std::max(enter_hi, in.sup());
+      leave_lo = std::min(leave_lo, out.inf()), leave_hi = std::min(leave_hi, out.sup());
+    } else if (!(d.inf() == 0 && d.sup() == 0)) {   // (exactly parallel: the whole curve is in the slab)
+      enter_hi = 1;   // (this slab's parameters unknown: enter and leave anywhere in [0, 1])
+      leave_lo = 0;
+    }
+  };
+  slab(sx, dx, c[0].x, c[2].x);
+  slab(sy, dy, c[0].y, c[2].y);
+  bool some = true;
+  auto within = [&](double lo, double hi, double from, double to) {   // [lo, hi] clamped to [from, to]
+    lo = std::max(lo, from), hi = std::min(hi, to);
+    some = some && lo <= hi;
+    return some ? Interval(lo, hi) : Interval(from);
+  };
+  const Interval enter = within(enter_lo, enter_hi, 0, 1), leave = within(leave_lo, leave_hi, 0, 1);
+  for (int k = 0; k < 2; ++k) {
+    const Interval& l = k == 0 ? enter : leave;
+    const Interval x = sx + l * dx, y = sy + l * dy;
+    part.x[k] = within(x.inf(), x.sup(), c[0].x, c[2].x);
+    part.y[k] = within(y.inf(), y.sup(), c[0].y, c[2].y);
+  }
+  return some;
+}
+
+// The boxes of part's ends strictly inside the convex facet f, told on
+// intervals (false where they cannot tell): then so is the part.
+bool part_inside(const Facet& f, const CellPart& part) {
+  const std::size_t n = f.v.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const P3 &u = f.v[i], &v = f.v[(i + 1) % n];
+    const Interval ux = approx_of(u.x), uy = approx_of(u.y), ex = approx_of(v.x) - ux, ey = approx_of(v.y) - uy;
+    for (int k = 0; k < 2; ++k) {
+      const Interval o = ex * (part.y[k] - uy) - ey * (part.x[k] - ux);
+      if (turn(f) > 0 ? !(o.inf() > 0) : !(o.sup() < 0)) return false;
+    }
+  }
+  return true;
+}
+
+// A curve whose part in the cell lies strictly inside one facet listed there,
+// planar and strictly nearer at both its ends, is hidden throughout the cell:
+// no cut or crossing there changes what is seen (7a-ii). (A cell's blocker
+// covers the whole cell; such a facet covers only the curve's part.) Planar,
+// as a blocker: the edges of its own face lie in its plane, never behind it.
+// Its crossings with other curves there need no point: where one in front of
+// it crosses, that facet is in front of the curve's own facets nearby, which
+// then change nothing beside the one in front; one behind it is hidden there.
+// Decided on the images' intervals, which never narrow, and exact predicates:
+// the same on every thread count.
+bool hidden_in_cell(const Curve& cv, const Cell& cell, const std::array<Corner, 4>& c, const ScreenScene& ss) {
+  if (cell.facets.empty()) return false;
+  const double znear = std::max(approx_of(cv.s->z).sup(), approx_of(cv.t->z).sup());
+  CellPart part;
+  if (!part_in_cell(cv, c, part)) return false;
+  const CGAL::Bbox_2 box = part.box();
+  for (int fi : cell.facets) {
+    const Facet& f = ss.facet(fi);
+    if (!f.planar || !f.occluder || f.zlo >= znear) continue;   // (not nearer anywhere)
+    if (!(f.box.xmin() < box.xmin() && box.xmax() < f.box.xmax() && f.box.ymin() < box.ymin() &&
+          box.ymax() < f.box.ymax()))
+      continue;
+    if (part_inside(f, part) && curve_behind(cv, f, ss.world)) return true;
+  }
+  return false;
+}
+
 // The segment s-t meets the closed cell (its bounding box is known to): not all
 // four corners strictly on one side of its line.
 bool meets_cell(const P3& s, const P3& t, const std::array<Corner, 4>& c) {
@@ -1586,7 +1677,7 @@ struct RowCuts {
   std::vector<std::pair<int, int>> overlaps;   // collinear curves sharing more than a point
   std::vector<int> met;                        // (lines only) curves found to meet a drawn one
   std::vector<DrawnCrossed> crossed;           // (lines only) crossings of a drawn curve, in this row's cells
-  std::int64_t pairs = 0, crossings = 0, uncut = 0;
+  std::int64_t pairs = 0, crossings = 0, uncut = 0, behind = 0;
 };
 
 // How two curves meet (Cutter::meet): not at all (or crossing apart), only at
@@ -1602,6 +1693,23 @@ struct Cutter {
   int ix, iy;
   // The last proper crossing meet() found, where this cell holds it (else none).
   std::optional<P2> crossing = std::nullopt;
+  // Per curve of the cell (its place in Cell::curves): whether hidden_in_cell,
+  // -1 until asked. (Asked only of curves that may cross: most pairs are told
+  // apart on their boxes and intervals for less than the test costs.)
+  const Cell* cell = nullptr;
+  std::vector<signed char> hidden{};
+
+  void start_cell(const Cell& c) {
+    cell = &c;
+    hidden.assign(c.curves.size(), -1);
+  }
+  bool hidden_here(std::size_t i) {
+    if (hidden[i] < 0) {
+      hidden[i] = hidden_in_cell(ss.curves[cell->curves[i]], *cell, corners(g, ix, iy), ss);
+      row.behind += hidden[i];
+    }
+    return hidden[i] != 0;
+  }
 
   void cut(int c, const P2& p) {
     if (in_cell(g, ix, iy, p)) row.at.emplace_back(c, p);
@@ -1614,15 +1722,17 @@ struct Cutter {
     return between_on_line(C.s->xy(), p, C.t->xy(), /*strictly=*/true);
   }
 
-  // Cuts C and D, whose boxes meet, where they cross or touch (but where they
-  // cross apart: see meet()); how they may meet (closed segments), kNone where
-  // they surely do not or cross apart. The caller holds an UpwardRounding (one
-  // switch per cell, not per pair): the points' intervals first, CGAL's
-  // predicates (rounding to nearest) only where those cannot tell. (Where the
-  // intervals tell, meet() would cut nothing, and would say they meet exactly
-  // where they share an end.)
-  Contact meet_on_intervals_first(int ci, int di, bool apart) {
-    if (no_cut_on_intervals(ci, di, apart))
+  // Cuts C and D, the cell's curves i and j, whose boxes meet, where they
+  // cross or touch (but where they cross apart: see meet(), or where either is
+  // hidden throughout the cell: hidden_in_cell); how they may meet (closed
+  // segments), kNone where they surely do not or cross apart. The caller holds
+  // an UpwardRounding (one switch per cell, not per pair): the points'
+  // intervals first, CGAL's predicates (rounding to nearest) only where those
+  // cannot tell. (Where the intervals tell, meet() would cut nothing, and would
+  // say they meet exactly where they share an end.)
+  Contact meet_on_intervals_first(std::size_t i, std::size_t j, bool apart) {
+    const int ci = cell->curves[i], di = cell->curves[j];
+    if (no_cut_on_intervals(ci, di, apart) || hidden_here(i) || hidden_here(j))
       return common_end(ss.curves[ci], ss.curves[di]) ? Contact::kSharedEnd : Contact::kNone;
     NearestRounding nearest;
     return meet(ci, di, apart);
@@ -1911,7 +2021,7 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
   cuts.needed.assign(n, 1);
   std::vector<std::pair<int, int>> overlaps;
   std::vector<DrawnCrossed> crossed;   // (lines only)
-  std::int64_t pairs = 0, crossings = 0, uncut = 0;
+  std::int64_t pairs = 0, crossings = 0, uncut = 0, behind = 0;
   // visit(cutter, cell) for every cell, the rows in parallel; what they found is
   // joined in row order, as one pass over the cells in order would have found it.
   auto each_cell = [&](auto&& visit) {
@@ -1933,6 +2043,7 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
       pairs += row.pairs;
       crossings += row.crossings;
       uncut += row.uncut;
+      behind += row.behind;
       row = RowCuts();
     }
   };
@@ -1953,11 +2064,12 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
     const auto& cs = cell.curves;
     if (cs.size() < 2) return;
     UpwardRounding upward;
+    cutter.start_cell(cell);
     for (std::size_t i = 0; i < cs.size(); ++i)
       for (std::size_t j = i + 1; j < cs.size(); ++j) {
         const int a = cs[i], b = cs[j];
         if (!wanted(a, b) || !cutter.boxes_meet(a, b)) continue;
-        if (const Contact how = cutter.meet_on_intervals_first(a, b, is_apart(a, b)); how != Contact::kNone) met(a, b, how);
+        if (const Contact how = cutter.meet_on_intervals_first(i, j, is_apart(a, b)); how != Contact::kNone) met(a, b, how);
       }
   };
   if (regions) {
@@ -2031,6 +2143,7 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
   stats.count("edge_pairs_tested", pairs);
   stats.count("intersections", crossings);
   stats.count("crossings_left_uncut", uncut);   // (pairs apart(): a crossing, if any, cuts nothing)
+  stats.count("curve_cells_behind_facet", behind);   // (asked of curves that may cross another)
   stats.count("overlapping_curve_pairs", static_cast<std::int64_t>(overlaps.size()));
   return cuts;
 }

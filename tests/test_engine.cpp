@@ -999,6 +999,45 @@ TEST(CoveredCrossings, LeftUncutWithoutChangingTheMap) {
   EXPECT_GT(uncut_lines, 100) << "no crossing was left uncut in a lines-only drawing";
 }
 
+// A curve whose part in a cell lies strictly inside a nearer facet listed
+// there is hidden throughout the cell: its crossings there are not cut. The
+// map must be the one Newell's engine writes (no grid, every crossing cut),
+// and the checker's; the lines alone the same segments.
+TEST(HiddenInCell, CrossingsOfCurvesHiddenInACellAreNotCutWithoutChangingTheMap) {
+  struct Shot {
+    std::string what;
+    vismap::Scene scene;
+    vismap::Camera camera;
+  };
+  std::vector<Shot> shots;
+  const vismap::Scene squares = vismap::gen::random_squares_depth(300, 5, 11);
+  shots.push_back({"squares, obliquely", squares, ortho({-0.3, -0.5, -1})});
+  shots.push_back({"squares, along z", squares, ortho({0, 0, -1})});
+  shots.push_back({"squares, perspective close-up", squares, persp({0.3, 0.4, 1.6}, {0.5, 0.5, 0.4}, 60)});
+  shots.push_back({"piercing boxes", vismap::gen::interpenetrating_boxes(6, 5), ortho({-1, -2, -3})});
+  shots.push_back({"hills, perspective", hills(16), persp({1.8, -1.2, 0.9}, {0.5, 0.5, 0}, 35)});
+  std::int64_t behind = 0;
+  for (Shot& shot : shots) {
+    shot.scene.file = shot.what;
+    const vismap::View view = vismap::make_view(shot.camera, shot.scene);
+    vismap::Options opt;
+    opt.threads = 1;
+    behind += vismap::visibility_franklin(shot.scene, view, opt).stats.counted("curve_cells_behind_facet");
+    const std::string json = map_json(shot.scene, view, opt);
+    vismap::VisibilityMap n = vismap::visibility_newell(shot.scene, view, opt);
+    n.stats = {};
+    EXPECT_EQ(vismap::to_json(n), json) << shot.what << ": Newell's map differs";
+    vismap_check::Options check;
+    check.samples = 600;
+    expect_checked(shot.scene, json, check, shot.what);
+    vismap::Options lines = opt;
+    lines.regions = false;
+    EXPECT_EQ(segments_of(map_json(shot.scene, view, lines)), segments_of(json))
+        << shot.what << ": the lines alone differ from the whole map's";
+  }
+  EXPECT_GT(behind, 500) << "no curve was found hidden in a cell";
+}
+
 // ---- crease angles at the threshold ------------------------------------------------
 
 // Whether the edge o-p shared by triangles (o, p, q) and (p, o, r) is a crease at
