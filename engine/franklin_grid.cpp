@@ -267,14 +267,18 @@ bool part_inside(const Facet& f, const CellPart& part) {
 // Decided on the images' intervals, which never narrow, and exact predicates:
 // the same on every thread count.
 bool hidden_in_cell(const Curve& cv, const Cell& cell, const std::array<Corner, 4>& c, const ScreenScene& ss) {
-  if (cell.facets.empty()) return false;
   const double znear = std::max(approx_of(cv.s->z).sup(), approx_of(cv.t->z).sup());
   CellPart part;
-  if (!part_in_cell(cv, c, part)) return false;
-  const CGAL::Bbox_2 box = part.box();
+  CGAL::Bbox_2 box;
+  bool clipped = false;   // (the part made for the first facet that may hide it)
   for (int fi : cell.facets) {
     const Facet& f = ss.facet(fi);
     if (!f.planar || !f.occluder || f.zlo >= znear) continue;   // (not nearer anywhere)
+    if (!clipped) {
+      if (!part_in_cell(cv, c, part)) return false;
+      box = part.box();
+      clipped = true;
+    }
     if (!(f.box.xmin() < box.xmin() && box.xmax() < f.box.xmax() && f.box.ymin() < box.ymin() &&
           box.ymax() < f.box.ymax()))
       continue;
