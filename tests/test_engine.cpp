@@ -932,6 +932,40 @@ TEST(Culling, FacesSeenFromBehindOutsideTheNearPlanesCapsAreCulled) {
   }
 }
 
+// A scene seen from one camera, named.
+struct Shot {
+  std::string what;
+  vismap::Scene scene;
+  vismap::Camera camera;
+};
+
+// Franklin's map of the shot (one thread) is Newell's, byte for byte, and the
+// checker's; its lines alone (no regions) are the same segments. Returns the
+// two runs' counts (whole map, lines only).
+std::pair<vismap::Stats, vismap::Stats> expect_as_newell_and_checker(Shot& shot) {
+  shot.scene.file = shot.what;
+  const vismap::View view = vismap::make_view(shot.camera, shot.scene);
+  vismap::Options opt;
+  opt.threads = 1;
+  vismap::VisibilityMap m = vismap::visibility_franklin(shot.scene, view, opt);
+  const vismap::Stats whole = m.stats;
+  m.stats = {};
+  const std::string json = vismap::to_json(m);
+  vismap::VisibilityMap n = vismap::visibility_newell(shot.scene, view, opt);
+  n.stats = {};
+  EXPECT_EQ(vismap::to_json(n), json) << shot.what << ": Newell's map differs";
+  vismap_check::Options check;
+  check.samples = 600;
+  expect_checked(shot.scene, json, check, shot.what);
+  vismap::Options lines = opt;
+  lines.regions = false;
+  vismap::VisibilityMap l = vismap::visibility_franklin(shot.scene, view, lines);
+  const vismap::Stats drawn = l.stats;
+  l.stats = {};
+  EXPECT_EQ(segments_of(vismap::to_json(l)), segments_of(json)) << shot.what << ": the lines alone differ from the whole map's";
+  return {whole, drawn};
+}
+
 // Where two lines each with a hiding facet on both sides (Curve::covered) cross
 // on screen, one wholly nearer than the other and no face shared, the engine
 // cuts neither (cut_curves: stat crossings_left_uncut). The map must not
@@ -943,11 +977,6 @@ TEST(Culling, FacesSeenFromBehindOutsideTheNearPlanesCapsAreCulled) {
 // sphere right behind another on screen (a line right behind a covered one is
 // visible: an overlap, never skipped), boxes that pierce each other.
 TEST(CoveredCrossings, LeftUncutWithoutChangingTheMap) {
-  struct Shot {
-    std::string what;
-    vismap::Scene scene;
-    vismap::Camera camera;
-  };
   std::vector<Shot> shots;
   const vismap::Scene h = hills(16);
   shots.push_back({"hills, perspective", h, persp({1.8, -1.2, 0.9}, {0.5, 0.5, 0}, 35)});
@@ -974,26 +1003,11 @@ TEST(CoveredCrossings, LeftUncutWithoutChangingTheMap) {
   shots.push_back({"piercing boxes", vismap::gen::interpenetrating_boxes(6, 3), ortho({-1, -2, -3})});
   std::int64_t uncut = 0, uncut_lines = 0;
   for (Shot& shot : shots) {
-    shot.scene.file = shot.what;
-    const vismap::View view = vismap::make_view(shot.camera, shot.scene);
-    vismap::Options opt;
-    opt.threads = 1;
-    const vismap::VisibilityMap m = vismap::visibility_franklin(shot.scene, view, opt);
-    uncut += m.stats.counted("crossings_left_uncut");
-    const std::string json = map_json(shot.scene, view, opt);
-    vismap::VisibilityMap n = vismap::visibility_newell(shot.scene, view, opt);
-    n.stats = {};
-    EXPECT_EQ(vismap::to_json(n), json) << shot.what << ": Newell's map differs";
-    vismap_check::Options check;
-    check.samples = 600;
-    expect_checked(shot.scene, json, check, shot.what);
+    const auto [whole, lines] = expect_as_newell_and_checker(shot);
+    uncut += whole.counted("crossings_left_uncut");
     // A lines-only drawing leaves the same crossings uncut (and makes no curve
-    // needed for them): the same segments.
-    vismap::Options lines = opt;
-    lines.regions = false;
-    uncut_lines += vismap::visibility_franklin(shot.scene, view, lines).stats.counted("crossings_left_uncut");
-    EXPECT_EQ(segments_of(map_json(shot.scene, view, lines)), segments_of(json))
-        << shot.what << ": the lines alone differ from the whole map's";
+    // needed for them).
+    uncut_lines += lines.counted("crossings_left_uncut");
   }
   EXPECT_GT(uncut, 1000) << "no crossing was left uncut";
   EXPECT_GT(uncut_lines, 100) << "no crossing was left uncut in a lines-only drawing";
@@ -1004,11 +1018,6 @@ TEST(CoveredCrossings, LeftUncutWithoutChangingTheMap) {
 // map must be the one Newell's engine writes (no grid, every crossing cut),
 // and the checker's; the lines alone the same segments.
 TEST(HiddenInCell, CrossingsOfCurvesHiddenInACellAreNotCutWithoutChangingTheMap) {
-  struct Shot {
-    std::string what;
-    vismap::Scene scene;
-    vismap::Camera camera;
-  };
   std::vector<Shot> shots;
   const vismap::Scene squares = vismap::gen::random_squares_depth(300, 5, 11);
   shots.push_back({"squares, obliquely", squares, ortho({-0.3, -0.5, -1})});
@@ -1017,24 +1026,7 @@ TEST(HiddenInCell, CrossingsOfCurvesHiddenInACellAreNotCutWithoutChangingTheMap)
   shots.push_back({"piercing boxes", vismap::gen::interpenetrating_boxes(6, 5), ortho({-1, -2, -3})});
   shots.push_back({"hills, perspective", hills(16), persp({1.8, -1.2, 0.9}, {0.5, 0.5, 0}, 35)});
   std::int64_t behind = 0;
-  for (Shot& shot : shots) {
-    shot.scene.file = shot.what;
-    const vismap::View view = vismap::make_view(shot.camera, shot.scene);
-    vismap::Options opt;
-    opt.threads = 1;
-    behind += vismap::visibility_franklin(shot.scene, view, opt).stats.counted("curve_cells_behind_facet");
-    const std::string json = map_json(shot.scene, view, opt);
-    vismap::VisibilityMap n = vismap::visibility_newell(shot.scene, view, opt);
-    n.stats = {};
-    EXPECT_EQ(vismap::to_json(n), json) << shot.what << ": Newell's map differs";
-    vismap_check::Options check;
-    check.samples = 600;
-    expect_checked(shot.scene, json, check, shot.what);
-    vismap::Options lines = opt;
-    lines.regions = false;
-    EXPECT_EQ(segments_of(map_json(shot.scene, view, lines)), segments_of(json))
-        << shot.what << ": the lines alone differ from the whole map's";
-  }
+  for (Shot& shot : shots) behind += expect_as_newell_and_checker(shot).first.counted("curve_cells_behind_facet");
   EXPECT_GT(behind, 500) << "no curve was found hidden in a cell";
 }
 
