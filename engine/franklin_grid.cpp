@@ -1699,7 +1699,8 @@ struct Cutter {
   std::optional<P2> crossing = std::nullopt;
   // Per curve of the cell (its place in Cell::curves): whether hidden_in_cell,
   // -1 until asked. (Asked only of curves that may cross: most pairs are told
-  // apart on their boxes and intervals for less than the test costs.)
+  // apart on their boxes and intervals for less than the test costs. Once
+  // known hidden, a curve's other pairs in the cell are not looked at.)
   const Cell* cell = nullptr;
   std::vector<signed char> hidden{};
 
@@ -1707,6 +1708,7 @@ struct Cutter {
     cell = &c;
     hidden.assign(c.curves.size(), -1);
   }
+  bool known_hidden(std::size_t i) const { return hidden[i] > 0; }
   bool hidden_here(std::size_t i) {
     if (hidden[i] < 0) {
       hidden[i] = hidden_in_cell(ss.curves[cell->curves[i]], *cell, corners(g, ix, iy), ss);
@@ -1729,15 +1731,18 @@ struct Cutter {
   // Cuts C and D, the cell's curves i and j, whose boxes meet, where they
   // cross or touch (but where they cross apart: see meet(), or where either is
   // hidden throughout the cell: hidden_in_cell); how they may meet (closed
-  // segments), kNone where they surely do not or cross apart. The caller holds
+  // segments), kNone where they surely do not, cross apart, or either is
+  // hidden throughout the cell (then nothing they share there is seen, not
+  // even an end: no vertex of the map, no line joined there). The caller holds
   // an UpwardRounding (one switch per cell, not per pair): the points'
   // intervals first, CGAL's predicates (rounding to nearest) only where those
   // cannot tell. (Where the intervals tell, meet() would cut nothing, and would
   // say they meet exactly where they share an end.)
   Contact meet_on_intervals_first(std::size_t i, std::size_t j, bool apart) {
     const int ci = cell->curves[i], di = cell->curves[j];
-    if (no_cut_on_intervals(ci, di, apart) || hidden_here(i) || hidden_here(j))
+    if (no_cut_on_intervals(ci, di, apart))
       return common_end(ss.curves[ci], ss.curves[di]) ? Contact::kSharedEnd : Contact::kNone;
+    if (hidden_here(i) || hidden_here(j)) return Contact::kNone;
     NearestRounding nearest;
     return meet(ci, di, apart);
   }
@@ -2072,7 +2077,7 @@ Cuts cut_curves(Grid& g, const ScreenScene& ss, bool regions, int threads, Stats
     for (std::size_t i = 0; i < cs.size(); ++i)
       for (std::size_t j = i + 1; j < cs.size(); ++j) {
         const int a = cs[i], b = cs[j];
-        if (!wanted(a, b) || !cutter.boxes_meet(a, b)) continue;
+        if (!wanted(a, b) || cutter.known_hidden(i) || cutter.known_hidden(j) || !cutter.boxes_meet(a, b)) continue;
         if (const Contact how = cutter.meet_on_intervals_first(i, j, is_apart(a, b)); how != Contact::kNone) met(a, b, how);
       }
   };
