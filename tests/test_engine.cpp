@@ -1306,13 +1306,24 @@ TEST(Crossings, ExactValuesAreTheLinesCrossingOverAnyDenominators) {
   using vismap::exact::FT;
   using vismap::exact::P2;
   std::mt19937_64 rng(17);
-  std::uniform_int_distribution<int> num(-4000, 4000), den(1, 999), bit(0, 20);
+  std::uniform_int_distribution<int> num(-4000, 4000), den(1, 999), bit(0, 20), wide(0, 160);
+  std::uniform_int_distribution<std::int64_t> mantissa(-(std::int64_t{1} << 53), std::int64_t{1} << 53);
   int checked = 0, kept = 0;
-  for (int trial = 0; trial < 3000; ++trial) {
+  for (int trial = 0; trial < 4000; ++trial) {
     // 0: odd and other denominators, 1: powers of two, 2: a segment parallel to
-    // an axis, 3: a horizontal one and a vertical one
-    const int kind = trial % 4;
+    // an axis, 3: a horizontal one and a vertical one, 4: projected doubles'
+    // values (a sum of two products of doubles over a power of two: numbers of
+    // several limbs)
+    const int kind = trial % 5;
     auto coordinate = [&] {
+      if (kind == 4) {
+        mpz_class n = mpz_class(static_cast<double>(mantissa(rng))) * mpz_class(static_cast<double>(mantissa(rng))) +
+                      mpz_class(static_cast<double>(mantissa(rng)));
+        mpq_class q(n);
+        mpz_mul_2exp(q.get_den_mpz_t(), q.get_den_mpz_t(), static_cast<mp_bitcnt_t>(wide(rng)));
+        q.canonicalize();
+        return q;
+      }
       mpq_class q(num(rng), kind == 1 ? 1 << bit(rng) : den(rng));
       q.canonicalize();
       return q;
@@ -1331,10 +1342,10 @@ TEST(Crossings, ExactValuesAreTheLinesCrossingOverAnyDenominators) {
     ASSERT_EQ(vismap::exact::exact_x(got), want_x) << "trial " << trial;
     ASSERT_EQ(vismap::exact::exact_y(got), want_y) << "trial " << trial;
     ++checked;
-    kept += kind >= 2;
+    kept += kind == 2 || kind == 3;
   }
-  EXPECT_GT(checked, 2900);
-  EXPECT_GT(kept, 1400);
+  EXPECT_GT(checked, 3900);
+  EXPECT_GT(kept, 1500);
 }
 
 // The points the threads share keep the interval they were made with once their
