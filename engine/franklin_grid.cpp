@@ -1599,8 +1599,8 @@ struct CrossingOf {
     return result_type(coordinate(0, z.X[0], z.ux), coordinate(1, z.X[1], z.uy));
   }
   // The integers fraction_free works on, per thread: allocated once, grown as
-  // needed (a crossing's made its exact value ~25 times: a fifth of its cost on
-  // random squares seen obliquely).
+  // needed. (Made and freed for each crossing, ~25 of them were a fifth of a
+  // crossing's exact value on random squares seen obliquely.)
   struct DyadicScratch {
     mpz_t X[8], ux, uy, vx, vy, wx, wy, den, num, n, g;
     DyadicScratch() {
