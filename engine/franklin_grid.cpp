@@ -1773,8 +1773,8 @@ struct Cutter {
   // say they meet exactly where they share an end.)
   Contact meet_on_intervals_first(std::size_t i, std::size_t j, bool apart) {
     const int ci = cell->curves[i], di = cell->curves[j];
-    if (no_cut_on_intervals(ci, di, apart))
-      return common_end(ss.curves[ci], ss.curves[di]) ? Contact::kSharedEnd : Contact::kNone;
+    bool shared_end = false;
+    if (no_cut_on_intervals(ci, di, apart, shared_end)) return shared_end ? Contact::kSharedEnd : Contact::kNone;
     if (hidden_here(i) || hidden_here(j)) return Contact::kNone;
     NearestRounding nearest;
     return meet(ci, di, apart);
@@ -1838,8 +1838,9 @@ struct Cutter {
   // Whether the intervals of the points tell that C and D (boxes meeting) need
   // no cut, as meet() would find: not collinear at a common end, or apart from
   // each other's lines, or crossing apart() (rounding upward: the caller's
-  // UpwardRounding; no CGAL predicate). Else meet() decides.
-  bool no_cut_on_intervals(int ci, int di, bool apart) {
+  // UpwardRounding; no CGAL predicate). Else meet() decides. `shared_end`: whether
+  // they have a common end (common_end(); asked here once per pair).
+  bool no_cut_on_intervals(int ci, int di, bool apart, bool& shared_end) {
     const Curve &C = ss.curves[ci], &D = ss.curves[di];
     auto side = [](const P2& u, const P2& v, const P2& w) {   // (0: not told)
       ++filter_counts.calls;
@@ -1847,7 +1848,10 @@ struct Cutter {
                          (approx_y(v) - approx_y(u)) * (approx_x(w) - approx_x(u));
       return o.inf() > 0 ? 1 : o.sup() < 0 ? -1 : 0;
     };
-    if (const auto e = common_end(C, D)) return side(*e->p, *e->a, *e->b) != 0;
+    if (const auto e = common_end(C, D)) {
+      shared_end = true;
+      return side(*e->p, *e->a, *e->b) != 0;
+    }
     const P2 &cs = C.s->xy(), &ct = C.t->xy(), &ds = D.s->xy(), &dt = D.t->xy();
     const int o1 = side(cs, ct, ds), o2 = side(cs, ct, dt);
     if (o1 != 0 && o1 == o2) return true;
