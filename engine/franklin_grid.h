@@ -25,6 +25,8 @@ class Axis {
   explicit Axis(std::vector<double> bounds);
   double operator[](int i) const { return bounds_[static_cast<std::size_t>(i)]; }
   int cells() const { return static_cast<int>(bounds_.size()) - 1; }
+  // The halving steps a lookup takes, on average over the cells.
+  double steps_per_cell() const { return steps_ / cells(); }
   // The cell holding v: the last boundary <= v (clamped to the first and last cell).
   // (Inline: the grid's steps ask it tens of millions of times on 10^6 faces.)
   int index(double v) const {
@@ -48,9 +50,10 @@ class Axis {
   }
 
  private:
+  double spread_over(int j);
   std::vector<double> bounds_;
   std::vector<int> first_;      // first_[k]: the cell holding the start of bin k
-  double lo_ = 0, bins_per_unit_ = 0;
+  double lo_ = 0, bins_per_unit_ = 0, steps_ = 0;
   int bins_ = 0, last_ = -1;    // (first_.size() - 1, cells() - 1)
 };
 

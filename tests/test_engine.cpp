@@ -510,6 +510,37 @@ TEST(GridIndependence, SameMapForEveryGridConstant) {
   }
 }
 
+// An axis finds the cell of any coordinate (the last boundary at or below it,
+// clamped to the first and last cell), on boundaries evenly spaced and on
+// boundaries spread as a close-up's are (the quantiles of tan: a few outer
+// cells reach a hundred times further than the rest, which a table of even
+// bins over the whole span crowds into a few bins), in a few halving steps.
+TEST(GridAxis, FindsEveryCellInFewStepsOnEvenAndSpreadBoundaries) {
+  const double pi = std::acos(-1.0);
+  for (const bool spread : {false, true}) {
+    std::vector<double> bounds;
+    const int cells = 223;
+    for (int i = 0; i <= cells; ++i)
+      bounds.push_back(spread ? std::tan(0.998 * pi * (static_cast<double>(i) / cells - 0.5)) : 0.25 * i - 7);
+    const vismap::engine::Axis axis(bounds);
+    ASSERT_EQ(axis.cells(), cells);
+    auto expected = [&](double v) {
+      const auto above = std::upper_bound(bounds.begin(), bounds.end(), v) - bounds.begin();
+      return static_cast<int>(std::clamp<std::ptrdiff_t>(above - 1, 0, cells - 1));
+    };
+    std::vector<double> probes{-1e300, 1e300, bounds.front() - 1, bounds.back() + 1};
+    for (std::size_t i = 0; i < bounds.size(); ++i) {
+      probes.push_back(bounds[i]);
+      probes.push_back(std::nextafter(bounds[i], -HUGE_VAL));
+      probes.push_back(std::nextafter(bounds[i], HUGE_VAL));
+      if (i + 1 < bounds.size()) probes.push_back(0.5 * (bounds[i] + bounds[i + 1]));
+    }
+    for (const double v : probes) EXPECT_EQ(axis.index(v), expected(v)) << "at " << v << (spread ? " (spread)" : "");
+    // (On the spread boundaries a table over the whole span takes 2.6 steps a cell.)
+    EXPECT_LT(axis.steps_per_cell(), 2.0) << (spread ? "spread" : "even");
+  }
+}
+
 // ---- projected coordinates' intervals ------------------------------------------------
 
 // The interval a projected coordinate's filter reads, made on doubles (Sum2
