@@ -15,6 +15,7 @@
 #include <gmpxx.h>
 
 #include <cmath>
+#include <optional>
 #include <tuple>
 #ifdef VISMAP_FLOAT_KERNEL
 #include <CGAL/Simple_cartesian.h>
@@ -215,22 +216,29 @@ template <class OnIntervals>
   return approx();
 }
 
+// The sign an interval proves: it holds the exact value, so [0, 0] proves a
+// zero as surely as [1, 2] a positive value (an exact zero of numbers that
+// are doubles: a view along an axis, parts aligned on a lattice). Else
+// nullopt: the exact value decides.
+inline std::optional<CGAL::Sign> sign_of(const Interval& v) {
+  if (v.inf() > 0) return CGAL::POSITIVE;
+  if (v.sup() < 0) return CGAL::NEGATIVE;
+  if (v.inf() == 0 && v.sup() == 0) return CGAL::ZERO;
+  return std::nullopt;
+}
+
 template <class OnIntervals, class OnRationals>
 CGAL::Sign filtered_sign(OnIntervals&& approx, OnRationals&& exact) {
   ++filter_counts.calls;
   if (rounding_upward) {
-    const Interval v = on_intervals(approx);
-    if (v.inf() > 0) return CGAL::POSITIVE;
-    if (v.sup() < 0) return CGAL::NEGATIVE;
+    if (const auto s = sign_of(on_intervals(approx))) return *s;
     ++filter_counts.exact;
     NearestRounding nearest;
     return static_cast<CGAL::Sign>(sgn(mpq_class(exact())));
   }
   {
     CGAL::Protect_FPU_rounding<true> upward;
-    const Interval v = on_intervals(approx);
-    if (v.inf() > 0) return CGAL::POSITIVE;
-    if (v.sup() < 0) return CGAL::NEGATIVE;
+    if (const auto s = sign_of(on_intervals(approx))) return *s;
   }
   ++filter_counts.exact;
   const mpq_class v = exact();
