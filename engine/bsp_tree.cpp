@@ -112,6 +112,7 @@ class Builder {
       const Interval v = pl.ni[0] * (xi[0] - pl.o->x) + pl.ni[1] * (xi[1] - pl.o->y) + pl.ni[2] * (xi[2] - pl.o->z);
       if (v.inf() > 0) return 1;
       if (v.sup() < 0) return -1;
+      if (v.inf() == 0 && v.sup() == 0) return 0;   // (the interval holds the value: exactly 0)
     }
     // In the plane, known without rationals (the commonest case on a mesh: a
     // point cut on an edge two facets share lies in both their planes): the plane
@@ -320,6 +321,7 @@ int eye_side(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s, const E
     const Interval d = nx * (h(0) - h(3) * p.x) + ny * (h(1) - h(3) * p.y) + nz * (h(2) - h(3) * p.z);
     if (d.inf() > 0) return 1;
     if (d.sup() < 0) return -1;
+    if (d.inf() == 0 && d.sup() == 0) return 0;
   }
   const mpq_class ux = mpq_class(q.x) - p.x, uy = mpq_class(q.y) - p.y, uz = mpq_class(q.z) - p.z;
   const mpq_class vx = mpq_class(s.x) - r.x, vy = mpq_class(s.y) - r.y, vz = mpq_class(s.z) - r.z;

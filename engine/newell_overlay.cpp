@@ -267,8 +267,7 @@ bool covers(const Fragment& X, int frag, Probe& m, CurveLine& line, bool& left, 
     bool known = false;
     const Interval v = (q.x.approx() - p.x.approx()) * (m.iy - p.y.approx()) -
                        (q.y.approx() - p.y.approx()) * (m.ix - p.x.approx());
-    if (v.inf() > 0) { o = CGAL::POSITIVE; known = true; }
-    else if (v.sup() < 0) { o = CGAL::NEGATIVE; known = true; }
+    if (const auto s = exact::sign_of(v)) { o = *s; known = true; }   // (an interval of exactly 0 too)
     if (!known && !line.side_on_line(X, frag, k, p, q)) o = orientation(p, q, m);
     if (o == CGAL::POSITIVE) continue;
     if (o == CGAL::NEGATIVE) return left = right = false;
