@@ -14,6 +14,7 @@
 #include <CGAL/Interval_nt.h>
 #include <gmpxx.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <tuple>
@@ -158,13 +159,19 @@ inline CGAL::Comparison_result compare_coordinate_exactly(const P2& a, const P2&
 }
 // Whether q lies between p and r (strictly: not at either), the three known to
 // lie on one line. Along a line, any coordinate that is not constant on it
-// orders its points: one whose intervals set q apart from p and from r decides.
+// orders its points: one whose intervals set q apart from p and from r decides,
+// or one that is a double in all three, unequal at p and r (q then may be at
+// either end: edges along a line that share their ends, seen along an axis).
 inline bool between_on_line(const P2& p, const P2& q, const P2& r, bool strictly) {
   ++filter_counts.calls;
   auto apart = [](const Interval& u, const Interval& v) { return u.sup() < v.inf() || v.sup() < u.inf(); };
   for (const auto coordinate : {approx_x, approx_y}) {
     const Interval ip = coordinate(p), iq = coordinate(q), ir = coordinate(r);
     if (apart(ip, iq) && apart(iq, ir)) return (ip.sup() < iq.inf()) == (iq.sup() < ir.inf());
+    if (ip.is_point() && iq.is_point() && ir.is_point() && ip.inf() != ir.inf()) {
+      const double lo = std::min(ip.inf(), ir.inf()), hi = std::max(ip.inf(), ir.inf()), at = iq.inf();
+      return strictly ? lo < at && at < hi : lo <= at && at <= hi;
+    }
   }
   ++filter_counts.exact;
   const auto &ep = CGAL::exact(p), &eq = CGAL::exact(q), &er = CGAL::exact(r);

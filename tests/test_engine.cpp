@@ -759,8 +759,9 @@ TEST(ScreenLines, CrossProductSignsFromTheWorldAreTheImages) {
 // compare_xy_exactly and compare_coordinate_exactly answer as CGAL's predicates on the exact points, on a
 // vertical line whose x is no double (1/3), a horizontal one, and a slanted
 // one, each with a point repeated as a second object of the same value; and on
-// the vertical line, whose points' y set them apart, no exact value is needed,
-// where CGAL's own predicate (which decides x first) needs one.
+// the vertical line, whose points' y set them apart or are equal doubles, no
+// exact value is needed, where CGAL's own predicate (which decides x first)
+// needs one.
 TEST(PointOrder, AsCGALsOnExactPointsAndWithoutExactValuesOnAVerticalLine) {
   using vismap::exact::FT;
   using vismap::exact::P2;
@@ -790,6 +791,12 @@ TEST(PointOrder, AsCGALsOnExactPointsAndWithoutExactValuesOnAVerticalLine) {
   const std::int64_t before = vismap::exact::filter_counts.exact;
   EXPECT_TRUE(vismap::exact::between_on_line(p, q, r, true));
   EXPECT_FALSE(vismap::exact::between_on_line(q, p, r, true));
+  // (At an end, as a second object of its value: the ends' y are doubles, unequal.)
+  const P2 q2 = vertical(2);
+  EXPECT_TRUE(vismap::exact::between_on_line(q, q2, r, false));
+  EXPECT_FALSE(vismap::exact::between_on_line(q, q2, r, true));
+  EXPECT_FALSE(vismap::exact::between_on_line(p, q2, q, true));
+  EXPECT_TRUE(vismap::exact::between_on_line(p, q2, q, false));
   EXPECT_EQ(vismap::exact::filter_counts.exact, before);
   EXPECT_TRUE(CGAL::collinear_are_strictly_ordered_along_line(p, q, r));
   EXPECT_EQ(vismap::exact::filter_counts.exact, before + 1);
