@@ -50,6 +50,8 @@ std::uint32_t vertex_index(const Scene& s) {
   return static_cast<std::uint32_t>(s.vertices.size());
 }
 
+}  // namespace
+
 // Appends a closed box [lo, hi] as 8 shared vertices and 6 outward quads.
 // Vertex k of the box has hi's coordinate on axis a exactly when bit a of k is set.
 void add_box(Scene& s, Vec3 lo, Vec3 hi) {
@@ -61,8 +63,6 @@ void add_box(Scene& s, Vec3 lo, Vec3 hi) {
                                                 {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
   for (const auto& q : quads) s.faces.push_back({b + q[0], b + q[1], b + q[2], b + q[3]});
 }
-
-}  // namespace
 
 Rng::Rng(std::uint64_t seed) {
   for (auto& w : s_) w = splitmix64(seed);

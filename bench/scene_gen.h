@@ -58,6 +58,9 @@ Scene corner_fans(std::size_t n, int hubs, std::uint64_t seed);
 // rectangle's corner. Exactly planar, holes inside and apart: what Scene allows.
 Scene holed_plates(std::size_t n, std::uint64_t seed);
 
+// Appends a closed, outward-oriented box from lo to hi (8 vertices, 6 quads).
+void add_box(Scene& s, Vec3 lo, Vec3 hi);
+
 // Franklin's cubical array: k^3 closed, outward-oriented unit cubes (8 shared
 // vertices, 6 quads each) at pitch 1 + gap, so neighbours never touch.
 // Many exactly parallel edges and faces; exercises occlusion culling.

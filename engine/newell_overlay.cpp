@@ -263,12 +263,10 @@ bool covers(const Fragment& X, int frag, Probe& m, CurveLine& line, bool& left, 
   const std::size_t n = X.v.size();
   for (std::size_t k = 0; k < n; ++k) {
     const P3 &p = X.v[k], &q = X.v[(k + 1) % n];
-    CGAL::Sign o = CGAL::ZERO;
-    bool known = false;
     const Interval v = (q.x.approx() - p.x.approx()) * (m.iy - p.y.approx()) -
                        (q.y.approx() - p.y.approx()) * (m.ix - p.x.approx());
-    if (const auto s = exact::sign_of(v)) { o = *s; known = true; }   // (an interval of exactly 0 too)
-    if (!known && !line.side_on_line(X, frag, k, p, q)) o = orientation(p, q, m);
+    const auto told = exact::sign_of(v);   // (an interval of exactly 0 too)
+    const CGAL::Sign o = told ? *told : line.side_on_line(X, frag, k, p, q) ? CGAL::ZERO : orientation(p, q, m);
     if (o == CGAL::POSITIVE) continue;
     if (o == CGAL::NEGATIVE) return left = right = false;
     // m on this side's line. Its inward normal is (q - p) turned left: against n

@@ -1039,18 +1039,11 @@ std::pair<vismap::Stats, vismap::Stats> expect_as_newell_and_checker(Shot& shot)
 // Newell's and the checker's.
 TEST(FilteredSign, ALatticeSeenAlongItsRowsNeedsFewExactPredicates) {
   Shot shot{"lattice of boxes seen along its rows", {}, ortho({-0.86602540378443871, 0, -0.49999999999999994})};
-  vismap::Scene& s = shot.scene;
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j)
-      for (int k = 0; k < 4; ++k) {
-        const Vec3 lo{double(i), double(j), double(k)};
-        const Vec3 hi{i + 0.3 + 0.0625 * ((i + j + k) % 4), j + 0.5, k + 0.375 + 0.0625 * ((i * k) % 3)};
-        const auto v0 = static_cast<std::uint32_t>(s.vertices.size());
-        for (int c = 0; c < 8; ++c) s.vertices.push_back({c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z});
-        for (const std::array<std::uint32_t, 4>& q : {std::array<std::uint32_t, 4>{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                                                      {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}})
-          s.faces.push_back({v0 + q[0], v0 + q[1], v0 + q[2], v0 + q[3]});
-      }
+      for (int k = 0; k < 4; ++k)
+        vismap::gen::add_box(shot.scene, {double(i), double(j), double(k)},
+                             {i + 0.3 + 0.0625 * ((i + j + k) % 4), j + 0.5, k + 0.375 + 0.0625 * ((i * k) % 3)});
   const vismap::Stats whole = expect_as_newell_and_checker(shot).first;
   const std::int64_t predicates = whole.counted("predicates"), exact = whole.counted("predicates_exact");
   EXPECT_GT(predicates, 10000);
