@@ -496,6 +496,7 @@ struct CurveMaker {
   int k = 0;                     // the screen scale
   double cos_crease = 1;
   bool smooth = false;
+  bool drop_inside_edge_on = false;   // (the visible map's curves: inside_edge_on_plane)
   WorldFacets wf;
   std::vector<WorldPiece> pieces;
   std::vector<std::uint32_t> used;    // place -> input index: vertices in the order facets first use them
@@ -605,10 +606,13 @@ struct CurveMaker {
     return it != clips.end() && it->first == key ? &it->second : nullptr;
   }
   void make_clips(int threads);
-  bool make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3>& dropped, std::deque<P3>& ends) const;
+  // Pieces make() drops, counted by why: hidden, clipped, seen end-on, inside a
+  // plane seen edge-on.
+  using Dropped = std::array<std::int64_t, 4>;
+  bool make(const WorldPiece& wp, Curve& c, Dropped& dropped, std::deque<P3>& ends) const;
   // What make() would do with a piece, without making its curve: a lines-only
   // drawing leaves most pieces latent (only their numbers kept).
-  enum class Verdict { Hidden, Clipped, EndOn, Drawn, Latent };
+  enum class Verdict { Hidden, Clipped, EndOn, InPlane, Drawn, Latent };   // (the first four: Dropped's order)
   Verdict judge(const WorldPiece& wp) const;
   // A latent piece's box, as its curve would have it: its ends' images, or the
   // near plane's cut points (made by make_clips: looked up).
@@ -628,6 +632,7 @@ struct CurveMaker {
   bool drawn_of(const SmallInts& faces, EdgeKind kind) const { return !faces.empty() && (kind != EdgeKind::Smooth || smooth); }
   bool covered(const WorldPiece& wp) const;
   bool seen_with_area(const WorldPiece& wp) const;
+  bool inside_edge_on_plane(const WorldPiece& wp) const;
 };
 
 // Whether some facet sharing the piece hides or labels: else every one is a
@@ -661,6 +666,36 @@ bool CurveMaker::covered(const WorldPiece& wp) const {
   const Look &fa = look[static_cast<std::size_t>(a.facet)], &fb = look[static_cast<std::size_t>(b.facet)];
   if (!fa.occluder || !fb.occluder) return false;
   return (a.forward != b.forward) == (fa.facing == fb.facing);
+}
+
+// Whether the piece lies inside a plane seen edge-on (the visible map's curves
+// only): between two of its facets, projected, neither hiding nor labelling nor
+// cut by the near plane, that lie on opposite sides of it (the mesh goes on
+// across it, not folded back). Where the plane shows as a line, a line of sight
+// in it meets, nearer than the piece, the edge where it entered the facet before
+// it: a piece of the plane's outline, or one of another facet like these (and so
+// on, nearer each time), or one beside a facet the near plane cuts, which are
+// kept. That nearer piece is visible wherever this one is (a face that hides it
+// hides this one: edge-on facets hide nothing, and the nearer piece's other
+// facets have it on their outline), so this one, drawn or not, is never the
+// first of the pieces there; and edge-on facets bound no region. It cannot
+// change the map. (A CAD model seen in a sheet view: the
+// triangles of each plane seen edge-on, whose edges all lie on one line there,
+// pairwise overlapping.) Exact: one filtered world predicate.
+bool CurveMaker::inside_edge_on_plane(const WorldPiece& wp) const {
+  if (!drop_inside_edge_on || wp.sharers.size() != 2 || wp.sharers[0].facet == wp.sharers[1].facet) return false;
+  for (const Sharer& s : wp.sharers) {
+    const Look& f = look[static_cast<std::size_t>(s.facet)];
+    if (!f.projected || f.facing != Facing::EdgeOn || f.occluder || cut(s.facet)) return false;
+  }
+  // A corner of each facet off the piece's line (convex: the facet lies on its
+  // side), the one after the shared edge; on the line (a straight turn): kept.
+  auto beyond = [&](const Sharer& s) -> const Vec3& {
+    const auto& v = wf.facets[static_cast<std::size_t>(s.facet)].v;
+    return scene->vertices[v[(s.edge + 2) % v.size()]];
+  };
+  return world::same_side_of_line(scene->vertices[wp.a], scene->vertices[wp.b], beyond(wp.sharers[0]),
+                                  beyond(wp.sharers[1])) < 0;
 }
 
 // The faces whose boundary the piece is (a sharer's edge that is not a
@@ -725,8 +760,7 @@ bool CurveMaker::creased(int f, int g) const {
 // The curve of edge piece wp, made in c (every field set: c may be reused);
 // false if it is dropped (counted in `dropped`: hidden, clipped, seen end-on).
 // An end cut at the near plane is kept in `ends`.
-bool CurveMaker::make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3>& dropped,
-                      std::deque<P3>& ends) const {
+bool CurveMaker::make(const WorldPiece& wp, Curve& c, Dropped& dropped, std::deque<P3>& ends) const {
   std::int64_t &dropped_hidden = dropped[0], &dropped_clipped = dropped[1], &dropped_point = dropped[2];
   c.sharers.clear();
   c.sharer_edge.clear();
@@ -741,6 +775,7 @@ bool CurveMaker::make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3
                                             : screen_edge_of(wf.facets[s.facet].v, s.edge, front));
   }
   if (!any_occluder(wp)) { ++dropped_hidden; return false; }
+  if (inside_edge_on_plane(wp)) { ++dropped[3]; return false; }
   std::array<int, 2> facet;
   faces_of(wp, c.faces, facet);
   c.kind = kind_of(c.faces, facet);
@@ -767,6 +802,7 @@ bool CurveMaker::make(const WorldPiece& wp, Curve& c, std::array<std::int64_t, 3
 // made: looked up, not kept.)
 CurveMaker::Verdict CurveMaker::judge(const WorldPiece& wp) const {
   if (!any_occluder(wp)) return Verdict::Hidden;
+  if (inside_edge_on_plane(wp)) return Verdict::InPlane;
   SmallInts faces;
   std::array<int, 2> facet;
   faces_of(wp, faces, facet);
@@ -1187,6 +1223,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   M.view = &view;
   M.cos_crease = std::cos(opt.crease_deg * M_PI / 180);
   M.smooth = opt.smooth;
+  M.drop_inside_edge_on = cull;
   const int threads = thread_count(opt.threads, scene.faces.size());
   // The world facets in screen order and their edge pieces: from the world
   // scene where one is kept for many views, else made for this view alone.
@@ -1518,7 +1555,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   // are judged, those drawn; + near-plane cuts; + intersection lines later.
   // (Reserved, not touched: room never used costs no memory.)
   ss.curves.reserve(made_here + ss.facet_count() / 8);
-  std::vector<std::array<std::int64_t, 3>> dropped(static_cast<std::size_t>(chunks));
+  std::vector<CurveMaker::Dropped> dropped(static_cast<std::size_t>(chunks));
   std::vector<std::vector<int>> left(static_cast<std::size_t>(chunks));
   const std::size_t first_ends = ss.ends.size();
   for (int k = 0; k < chunks; ++k) ss.ends.emplace_back();
@@ -1526,7 +1563,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     const Chunk r = chunk(k, np, size);
     std::deque<P3>& ends = ss.ends[first_ends + static_cast<std::size_t>(k)];
     std::vector<int> latent_here;   // (filled here, stored once)
-    std::array<std::int64_t, 3> count{};
+    CurveMaker::Dropped count{};
     if (!latent) out.reserve(static_cast<std::size_t>(r.end - r.begin));
     Curve c;
     for (int i = r.begin; i < r.end; ++i) {
@@ -1534,7 +1571,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
       if (latent) {   // (judged first: most pieces of a lines-only drawing are never made)
         const V v = verdict[static_cast<std::size_t>(i)];
         if (v == V::Latent) { latent_here.push_back(i); continue; }
-        if (v != V::Drawn) { ++count[v == V::Hidden ? 0 : v == V::Clipped ? 1 : 2]; continue; }   // (as make() counts)
+        if (v != V::Drawn) { ++count[static_cast<std::size_t>(v)]; continue; }   // (as make() counts)
       }
       if (M.make(wp, c, count, ends)) out.push_back(std::move(c));
     }
@@ -1551,11 +1588,12 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
     ss.latent_piece.insert(ss.latent_piece.end(), l.begin(), l.end());
     std::vector<int>().swap(l);
   }
-  std::int64_t dropped_hidden = 0, dropped_clipped = 0, dropped_point = 0;
+  std::int64_t dropped_hidden = 0, dropped_clipped = 0, dropped_point = 0, dropped_in_plane = 0;
   for (const auto& d : dropped) {
     dropped_hidden += d[0];
     dropped_clipped += d[1];
     dropped_point += d[2];
+    dropped_in_plane += d[3];
   }
   // The near-plane cut of a facet bounds its region but is never drawn.
   std::deque<P3>& cut_ends = ss.ends.emplace_back();
@@ -1582,6 +1620,7 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   stats.count("edges_culled_back", dropped_hidden);
   stats.count("edges_culled_outside_view", dropped_clipped);
   stats.count("edges_seen_end_on", dropped_point);
+  stats.count("edges_inside_edge_on_planes", dropped_in_plane);
   ss.planes_later = latent;
   if (latent) {
     stats.count("curves_latent", static_cast<std::int64_t>(ss.latent_piece.size()));
@@ -1800,7 +1839,7 @@ void make_latent_curves(ScreenScene& ss, const std::vector<char>& wanted, int th
   for (int k = 0; k < chunks; ++k) ss.ends.emplace_back();
   ss.curves.reserve(ss.curves.size() + pick.size());   // (moved at most once, not grown by doubling)
   parallel_append(ss.curves, chunks, threads, [&](int k, std::vector<Curve>& out) {
-    std::array<std::int64_t, 3> dropped{};   // (counted when it was left latent)
+    CurveMaker::Dropped dropped{};   // (counted when it was left latent)
     std::deque<P3>& ends = ss.ends[first_ends + static_cast<std::size_t>(k)];
     const Chunk r = chunk(k, n, size);
     for (int i = r.begin; i < r.end; ++i) {

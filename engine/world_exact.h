@@ -77,6 +77,23 @@ inline bool collinear(const Vec3& o, const Vec3& a, const Vec3& b) {
   return n[0].sign() == 0 && n[1].sign() == 0 && n[2].sign() == 0;
 }
 
+// sign(((q - p) x (r - p)) . ((q - p) x (s - p))), exact: for r and s in one
+// plane with the line pq, +1 where they lie on one side of it, -1 on opposite
+// sides, 0 where one is on the line. Intervals first (upward rounding), binary
+// floats where they cannot tell.
+inline int same_side_of_line(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    using I = CGAL::Interval_nt<false>;
+    const std::array<I, 3> a = normal_of<I>(p, q, r), b = normal_of<I>(p, q, s);
+    const I d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    if (d.inf() > 0) return 1;
+    if (d.sup() < 0) return -1;
+  }
+  const std::array<CGAL::Mpzf, 3> a = normal_of<CGAL::Mpzf>(p, q, r), b = normal_of<CGAL::Mpzf>(p, q, s);
+  return (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]).sign();
+}
+
 // orientation(o, a, b, p) for several points p against one plane: its normal
 // (a - o) x (b - o) made once in doubles, then sign(n . (p - o)) where a static
 // bound settles it (|error| <= 54 u A B C, u = 2^-53, with A, B, C the largest

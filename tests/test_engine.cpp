@@ -1097,6 +1097,65 @@ TEST(CoveredCrossings, LeftUncutWithoutChangingTheMap) {
   EXPECT_GT(uncut_lines, 100) << "no crossing was left uncut in a lines-only drawing";
 }
 
+// A flat grid of n x n cells of two triangles over [x0, x1] x [y0, y1] at height
+// z, added to the scene (counter-clockwise seen from above).
+void add_flat_grid(vismap::Scene& scene, double x0, double x1, double y0, double y1, double z, int n) {
+  const auto first = static_cast<std::uint32_t>(scene.vertices.size());
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      scene.vertices.push_back({x0 + (x1 - x0) * i / n, y0 + (y1 - y0) * j / n, z});
+  auto id = [&](int i, int j) { return first + static_cast<std::uint32_t>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      scene.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      scene.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+}
+
+// The edges between two triangles of a plane seen edge-on, which lie on either
+// side of them, are not made into curves (stat edges_inside_edge_on_planes):
+// nearer along each line of sight in the plane lies another piece of it, kept,
+// that is visible wherever they are. The map must not change: the checker
+// accepts it, Newell's engine writes it, the lines alone are its segments. The
+// cases where dropping would be wrong are here: a fin folded onto itself (its
+// fold is the nearest piece there, a smooth seam over the fin's own borders:
+// nothing is drawn), a plane through the eye that the near plane cuts (the
+// nearest pieces are those of the facets it cuts), smooth edges drawn.
+TEST(EdgeOnPlanes, PiecesInsideAPlaneSeenEdgeOnAreDroppedWithoutChangingTheMap) {
+  vismap::Scene plates;
+  add_flat_grid(plates, 0, 1, 0, 1, 0, 6);
+  add_flat_grid(plates, 0.5, 1.5, 2, 3, 0, 5);   // (behind the first, seen along y)
+  vismap::gen::add_box(plates, {0.2, -0.5, -0.2}, {0.4, -0.3, 0.2});   // (before both, across their line)
+  vismap::Scene fins;
+  fins.vertices = {{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, 0.8, 0},     // a fin folded over its edge
+                   {2, 0, 0}, {3, 0, 0}, {2.5, 1, 0}, {2.5, -1, 0}};   // a flat pair
+  fins.faces = {{0, 1, 2}, {1, 0, 3}, {4, 5, 6}, {5, 4, 7}};
+  vismap::Scene through_eye;
+  add_flat_grid(through_eye, -1, 3, 0, 1, 0, 8);
+  add_flat_grid(through_eye, -1, 3, 0, 1, 0.25, 3);   // (seen from below, not edge-on)
+  std::vector<Shot> shots;
+  shots.push_back({"plates seen edge-on along y", plates, ortho({0, 1, 0})});
+  shots.push_back({"plates seen edge-on obliquely", plates, ortho({0.3, 1, 0})});
+  shots.push_back({"plates seen edge-on in perspective", plates, persp({0.5, -3, 0}, {0.7, 1, 0}, 40)});
+  shots.push_back({"a folded fin and a flat pair seen edge-on", fins, ortho({0, 1, 0})});
+  shots.push_back({"a plate through the eye", through_eye, persp({1, 0.5, 0}, {2, 0.5, 0}, 60)});
+  std::int64_t dropped = 0;
+  for (Shot& shot : shots) dropped += expect_as_newell_and_checker(shot).first.counted("edges_inside_edge_on_planes");
+  EXPECT_GT(dropped, 150) << "no piece inside a plane seen edge-on was dropped";
+  // Where smooth edges are drawn, those inside the planes are dropped too: they
+  // are never the first line there either.
+  for (const Shot& shot : shots) {
+    vismap::Options opt;
+    opt.threads = 1;
+    opt.smooth = true;
+    const vismap::VisibilityMap m = vismap::visibility_franklin(shot.scene, vismap::make_view(shot.camera, shot.scene), opt);
+    vismap_check::Options check;
+    check.smooth = true;
+    check.samples = 600;
+    expect_checked(shot.scene, vismap::to_json(m), check, shot.what + ", smooth edges drawn");
+  }
+}
+
 // A curve whose part in a cell lies strictly inside a nearer facet listed
 // there is hidden throughout the cell: its crossings there are not cut. The
 // map must be the one Newell's engine writes (no grid, every crossing cut),
