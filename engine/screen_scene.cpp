@@ -497,6 +497,11 @@ struct CurveMaker {
   double cos_crease = 1;
   bool smooth = false;
   bool drop_inside_edge_on = false;   // (the visible map's curves: inside_edge_on_plane)
+  // Orthographic: the screen's rows r and u (r x u is the direction along which
+  // points share an image) and sight = +1 or -1, so that sight (r x u) points
+  // towards the eye (depth falls along it).
+  Vec3 row_r{}, row_u{};
+  int sight = 0;
   WorldFacets wf;
   std::vector<WorldPiece> pieces;
   std::vector<std::uint32_t> used;    // place -> input index: vertices in the order facets first use them
@@ -668,34 +673,45 @@ bool CurveMaker::covered(const WorldPiece& wp) const {
   return (a.forward != b.forward) == (fa.facing == fb.facing);
 }
 
-// Whether the piece lies inside a plane seen edge-on (the visible map's curves
-// only): between two of its facets, projected, neither hiding nor labelling nor
-// cut by the near plane, that lie on opposite sides of it (the mesh goes on
-// across it, not folded back). Where the plane shows as a line, a line of sight
-// in it meets, nearer than the piece, the edge where it entered the facet before
-// it: a piece of the plane's outline, or one of another facet like these (and so
-// on, nearer each time), or one beside a facet the near plane cuts, which are
-// kept. That nearer piece is visible wherever this one is (a face that hides it
-// hides this one: edge-on facets hide nothing, and the nearer piece's other
-// facets have it on their outline), so this one, drawn or not, is never the
-// first of the pieces there; and edge-on facets bound no region. It cannot
-// change the map. (A CAD model seen in a sheet view: the
-// triangles of each plane seen edge-on, whose edges all lie on one line there,
-// pairwise overlapping.) Exact: one filtered world predicate.
+// Whether the piece lies inside a plane seen edge-on, behind the facet of it
+// that a line of sight meets first (the visible map's curves only): no facet
+// sharing it hides or labels, and one that is seen edge-on, projected and not
+// cut by the near plane lies on the eye's side of it (orthographic: towards the
+// eye along the lines of sight; in perspective, where that side is not sought:
+// two such facets on opposite sides of it, the mesh going on across it). A line
+// of sight in that facet's plane through the piece then entered the facet
+// before, nearer, through the edge where it entered, a piece that is kept (of
+// the plane's outline, or one beside a facet the near plane cuts) or again one
+// like this, nearer each time. That nearer kept piece is visible wherever this
+// one is (a face that hides it hides this one: edge-on facets hide nothing, and
+// the nearer piece's other facets have it on their outline), so this one, drawn
+// or not, is never the first of the pieces there; and it bounds no region (no
+// facet of it labels). It cannot change the map. (A CAD model in a sheet view:
+// the triangles of each plane seen edge-on, whose edges all lie on one line
+// there, pairwise overlapping; the far edges of boxes seen along an axis, on
+// the lines of their near edges.) Exact: filtered world predicates.
 bool CurveMaker::inside_edge_on_plane(const WorldPiece& wp) const {
-  if (!drop_inside_edge_on || wp.sharers.size() != 2 || wp.sharers[0].facet == wp.sharers[1].facet) return false;
-  for (const Sharer& s : wp.sharers) {
+  if (!drop_inside_edge_on) return false;
+  for (const Sharer& s : wp.sharers)
+    if (look[static_cast<std::size_t>(s.facet)].occluder) return false;
+  auto flat = [&](const Sharer& s) {   // (seen edge-on, projected, whole)
     const Look& f = look[static_cast<std::size_t>(s.facet)];
-    if (!f.projected || f.facing != Facing::EdgeOn || f.occluder || cut(s.facet)) return false;
-  }
-  // A corner of each facet off the piece's line (convex: the facet lies on its
-  // side), the one after the shared edge; on the line (a straight turn): kept.
+    return f.projected && f.facing == Facing::EdgeOn && !cut(s.facet);
+  };
+  // A corner of the facet off the piece's line (convex: the facet lies on its
+  // side), the one after the shared edge; on the line (a straight turn): 0 below.
   auto beyond = [&](const Sharer& s) -> const Vec3& {
     const auto& v = wf.facets[static_cast<std::size_t>(s.facet)].v;
     return scene->vertices[v[(s.edge + 2) % v.size()]];
   };
-  return world::same_side_of_line(scene->vertices[wp.a], scene->vertices[wp.b], beyond(wp.sharers[0]),
-                                  beyond(wp.sharers[1])) < 0;
+  const Vec3 &p = scene->vertices[wp.a], &q = scene->vertices[wp.b];
+  if (sight != 0)
+    return std::any_of(wp.sharers.begin(), wp.sharers.end(), [&](const Sharer& s) {
+      return flat(s) && sight * world::side_of_line_toward(p, q, beyond(s), row_r, row_u) > 0;
+    });
+  if (wp.sharers.size() != 2 || wp.sharers[0].facet == wp.sharers[1].facet) return false;
+  if (!flat(wp.sharers[0]) || !flat(wp.sharers[1])) return false;
+  return world::same_side_of_line(p, q, beyond(wp.sharers[0]), beyond(wp.sharers[1])) < 0;
 }
 
 // The faces whose boundary the piece is (a sharer's edge that is not a
@@ -1224,6 +1240,16 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   M.cos_crease = std::cos(opt.crease_deg * M_PI / 180);
   M.smooth = opt.smooth;
   M.drop_inside_edge_on = cull;
+  if (!view.perspective) {
+    M.row_r = {view.m[0][0], view.m[0][1], view.m[0][2]};
+    M.row_u = {view.m[1][0], view.m[1][1], view.m[1][2]};
+    // f . (r x u): about -1 (r x u = -f for the camera's unit rows), its sign
+    // beyond doubt on doubles. (Depth is f . p: it falls towards the eye.)
+    const Vec3 &r = M.row_r, &u = M.row_u;
+    const double fe = view.m[2][0] * (r.y * u.z - r.z * u.y) + view.m[2][1] * (r.z * u.x - r.x * u.z) +
+                      view.m[2][2] * (r.x * u.y - r.y * u.x);
+    M.sight = fe < -0.5 ? 1 : fe > 0.5 ? -1 : 0;   // (0: not a camera's frame; two facets decide, as in perspective)
+  }
   const int threads = thread_count(opt.threads, scene.faces.size());
   // The world facets in screen order and their edge pieces: from the world
   // scene where one is kept for many views, else made for this view alone.

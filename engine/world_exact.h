@@ -94,6 +94,29 @@ inline int same_side_of_line(const Vec3& p, const Vec3& q, const Vec3& r, const 
   return (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]).sign();
 }
 
+// sign(((q - p) x (r - p)) . ((q - p) x (a x b))), exact (a x b too: the cross
+// product of two double vectors): for r in a plane with the line pq and the
+// direction a x b, +1 where r lies on that direction's side of the line, -1 on
+// the other, 0 on it. Intervals first (upward rounding), binary floats where
+// they cannot tell.
+template <class N>
+N toward_value(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& a, const Vec3& b) {
+  const std::array<N, 3> n = normal_of<N>(p, q, r);
+  const N ex = N(a.y) * N(b.z) - N(a.z) * N(b.y), ey = N(a.z) * N(b.x) - N(a.x) * N(b.z),
+          ez = N(a.x) * N(b.y) - N(a.y) * N(b.x);
+  const N dx = N(q.x) - N(p.x), dy = N(q.y) - N(p.y), dz = N(q.z) - N(p.z);
+  return n[0] * (dy * ez - dz * ey) + n[1] * (dz * ex - dx * ez) + n[2] * (dx * ey - dy * ex);
+}
+inline int side_of_line_toward(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& a, const Vec3& b) {
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const CGAL::Interval_nt<false> d = toward_value<CGAL::Interval_nt<false>>(p, q, r, a, b);
+    if (d.inf() > 0) return 1;
+    if (d.sup() < 0) return -1;
+  }
+  return toward_value<CGAL::Mpzf>(p, q, r, a, b).sign();
+}
+
 // orientation(o, a, b, p) for several points p against one plane: its normal
 // (a - o) x (b - o) made once in doubles, then sign(n . (p - o)) where a static
 // bound settles it (|error| <= 54 u A B C, u = 2^-53, with A, B, C the largest

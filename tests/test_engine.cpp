@@ -1112,15 +1112,18 @@ void add_flat_grid(vismap::Scene& scene, double x0, double x1, double y0, double
     }
 }
 
-// The edges between two triangles of a plane seen edge-on, which lie on either
-// side of them, are not made into curves (stat edges_inside_edge_on_planes):
-// nearer along each line of sight in the plane lies another piece of it, kept,
-// that is visible wherever they are. The map must not change: the checker
-// accepts it, Newell's engine writes it, the lines alone are its segments. The
-// cases where dropping would be wrong are here: a fin folded onto itself (its
-// fold is the nearest piece there, a smooth seam over the fin's own borders:
-// nothing is drawn), a plane through the eye that the near plane cuts (the
-// nearest pieces are those of the facets it cuts), smooth edges drawn.
+// Edges inside a plane seen edge-on, behind a facet of it that no facet of
+// theirs hides or labels (orthographic: the facet on the eye's side; in
+// perspective: two facets on either side), are not made into curves (stat
+// edges_inside_edge_on_planes): nearer along each line of sight in the plane
+// lies another piece of it, kept, that is visible wherever they are. The map
+// must not change: the checker accepts it, Newell's engine writes it, the
+// lines alone are its segments. The cases where dropping would be wrong are
+// here: a plate's near border (the plate beyond it), a fin folded onto itself
+// (its fold is the nearest piece there, a smooth seam over the fin's own
+// borders: nothing is drawn), a plane through the eye that the near plane cuts
+// (the nearest pieces are those of the facets it cuts), smooth edges drawn;
+// and boxes seen along an axis (their far edges dropped).
 TEST(EdgeOnPlanes, PiecesInsideAPlaneSeenEdgeOnAreDroppedWithoutChangingTheMap) {
   vismap::Scene plates;
   add_flat_grid(plates, 0, 1, 0, 1, 0, 6);
@@ -1133,12 +1136,19 @@ TEST(EdgeOnPlanes, PiecesInsideAPlaneSeenEdgeOnAreDroppedWithoutChangingTheMap) 
   vismap::Scene through_eye;
   add_flat_grid(through_eye, -1, 3, 0, 1, 0, 8);
   add_flat_grid(through_eye, -1, 3, 0, 1, 0.25, 3);   // (seen from below, not edge-on)
+  vismap::Scene boxes;
+  for (int i = 0; i < 2; ++i)
+    for (int k = 0; k < 3; ++k)
+      vismap::gen::add_box(boxes, {double(i), 0.25 * i, double(k)}, {i + 0.75, 1 + 0.25 * k, k + 0.5 + 0.25 * i});
   std::vector<Shot> shots;
   shots.push_back({"plates seen edge-on along y", plates, ortho({0, 1, 0})});
   shots.push_back({"plates seen edge-on obliquely", plates, ortho({0.3, 1, 0})});
   shots.push_back({"plates seen edge-on in perspective", plates, persp({0.5, -3, 0}, {0.7, 1, 0}, 40)});
   shots.push_back({"a folded fin and a flat pair seen edge-on", fins, ortho({0, 1, 0})});
   shots.push_back({"a plate through the eye", through_eye, persp({1, 0.5, 0}, {2, 0.5, 0}, 60)});
+  shots.push_back({"boxes seen from above", boxes, ortho({0, 0, -1})});
+  shots.push_back({"boxes seen from the front", boxes, ortho({0, 1, 0})});
+  shots.push_back({"boxes seen along x at 30 degrees", boxes, ortho({-0.866, 0, -0.5})});
   std::int64_t dropped = 0;
   for (Shot& shot : shots) dropped += expect_as_newell_and_checker(shot).first.counted("edges_inside_edge_on_planes");
   EXPECT_GT(dropped, 150) << "no piece inside a plane seen edge-on was dropped";
