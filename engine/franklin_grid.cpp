@@ -2244,7 +2244,7 @@ bool cover_at(const Facet& f, Probe& probe, Cover& out, int own) {
     const P3& p = f.v[k];
     const P3& q = f.v[(k + 1) % n];
     const bool held = static_cast<int>(k) == own;
-    int o = held ? 0 : orientation(p, q, probe) * turn(f);
+    int o = held ? 0 : orientation(p, q, f.id[k], f.id[(k + 1) % n], probe) * turn(f);
     if (o > 0) continue;
     if (o < 0) return false;
     if (!held && edge_across(p, q, f.id[k], f.id[(k + 1) % n], probe) != CGAL::ZERO) {

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <mutex>
 #include <utility>
 #include <vector>
 
@@ -195,7 +196,7 @@ struct ExactSource {
   int screen_cross_sign(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) const {
     using M = CGAL::Mpzf;
     const Vec3 &A = (*vertices)[a], &B = (*vertices)[b], &C = (*vertices)[c], &D = (*vertices)[d];
-    const auto &r = m[0], &u = m[1];
+    const std::array<M, 3>& n = sight();
     // Each along one world axis (a difference of doubles is 0 exactly where
     // they are equal): along the same one, parallel; along axes i and j, v x w
     // is v_i w_j (or its negative) times the third axis, so the sign is that
@@ -209,22 +210,51 @@ struct ExactSource {
       return k;
     };
     int sv = 0, sw = 0;
-    if (const int i = axis(A, B, sv), j = axis(C, D, sw); i >= 0 && j >= 0) {
+    const int i = axis(A, B, sv), j = axis(C, D, sw);
+    if (i >= 0 && j >= 0) {
       if (i == j) return 0;
-      const int third = 3 - i - j, i1 = (third + 1) % 3, i2 = (third + 2) % 3;   // (i1, i2, third) cyclic
-      const int n = (M(r[static_cast<std::size_t>(i1)]) * M(u[static_cast<std::size_t>(i2)]) -
-                     M(r[static_cast<std::size_t>(i2)]) * M(u[static_cast<std::size_t>(i1)]))
-                        .sign();
-      return n * sv * sw * (i == i1 ? 1 : -1);
+      const int third = 3 - i - j, i1 = (third + 1) % 3;   // (i1, i2, third) cyclic
+      return n[static_cast<std::size_t>(third)].sign() * sv * sw * (i == i1 ? 1 : -1);
     }
+    // One along axis i, the other q - p (a lattice's edges and the segments
+    // between its corners): (e_i x (q - p)) . n, times the sign of the first's
+    // length, negated where it is the second.
+    if (i >= 0) return sv * axis_cross(i, C, D);
+    if (j >= 0) return -sw * axis_cross(j, A, B);
     const M vx = M(B.x) - M(A.x), vy = M(B.y) - M(A.y), vz = M(B.z) - M(A.z);
     const M wx = M(D.x) - M(C.x), wy = M(D.y) - M(C.y), wz = M(D.z) - M(C.z);
     const M cx = vy * wz - vz * wy, cy = vz * wx - vx * wz, cz = vx * wy - vy * wx;
     if (cx.sign() == 0 && cy.sign() == 0 && cz.sign() == 0) return 0;
-    const M nx = M(r[1]) * M(u[2]) - M(r[2]) * M(u[1]), ny = M(r[2]) * M(u[0]) - M(r[0]) * M(u[2]),
-            nz = M(r[0]) * M(u[1]) - M(r[1]) * M(u[0]);
-    return (nx * cx + ny * cy + nz * cz).sign();
+    return (n[0] * cx + n[1] * cy + n[2] * cz).sign();
   }
+
+  // sign((e_i x (q - p)) . n), n = r x u: (q - p)_j n_k - (q - p)_k n_j with
+  // (i, j, k) cyclic (e_i x e_j = e_k). Where n_j or n_k is 0 (a view in a plane
+  // of two axes), a comparison of two doubles.
+  int axis_cross(int i, const Vec3& p, const Vec3& q) const {
+    using M = CGAL::Mpzf;
+    const std::array<M, 3>& n = sight();
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    const int nj = n[static_cast<std::size_t>(j)].sign(), nk = n[static_cast<std::size_t>(k)].sign();
+    auto order = [&](int c) { return (coordinate(q, c) > coordinate(p, c)) - (coordinate(q, c) < coordinate(p, c)); };
+    if (nj == 0) return nk * order(j);
+    if (nk == 0) return -nj * order(k);
+    return ((M(coordinate(q, j)) - M(coordinate(p, j))) * n[static_cast<std::size_t>(k)] -
+            (M(coordinate(q, k)) - M(coordinate(p, k))) * n[static_cast<std::size_t>(j)])
+        .sign();
+  }
+  // r x u, exact, from the view's rows (made once, on first use: m is set first).
+  const std::array<CGAL::Mpzf, 3>& sight() const {
+    std::call_once(sight_once_, [&] {
+      using M = CGAL::Mpzf;
+      const auto &r = m[0], &u = m[1];
+      sight_ = {M(r[1]) * M(u[2]) - M(r[2]) * M(u[1]), M(r[2]) * M(u[0]) - M(r[0]) * M(u[2]),
+                M(r[0]) * M(u[1]) - M(r[1]) * M(u[0])};
+    });
+    return sight_;
+  }
+  mutable std::once_flag sight_once_;
+  mutable std::array<CGAL::Mpzf, 3> sight_;
 
   // Facet f's depth plane z = a x + b y + c on the (scaled) screen: the image of
   // its world plane. The three corners' homogeneous images H_i = M (p_i, 1) are

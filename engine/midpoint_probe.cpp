@@ -23,8 +23,18 @@ bool uncounted(Test&& test) {
   return yes;
 }
 
-// The curve lies on the line p -> q (so m does).
-bool curve_on_line(const P3& p, const P3& q, const Probe& m) {
+// The curve lies on the line p -> q (so m does). Where all four are input
+// vertices seen orthographically, the world decides (ExactSource::
+// screen_cross_sign: the images' rationals, a crossing's or a midpoint's
+// lines mostly, never made): the edges of a lattice of boxes seen along its
+// rows lie on each other's screen lines by the thousand.
+bool curve_on_line(const P3& p, const P3& q, VertexId ip, VertexId iq, const Probe& m) {
+  const VertexId is = m.curve->vs, it = m.curve->vt;
+  if (m.orthographic && ip >= 0 && iq >= 0 && is >= 0 && it >= 0) {
+    const auto a = static_cast<std::uint32_t>(ip), b = static_cast<std::uint32_t>(iq);
+    return m.orthographic->screen_cross_sign(a, b, a, static_cast<std::uint32_t>(is)) == 0 &&
+           m.orthographic->screen_cross_sign(a, b, a, static_cast<std::uint32_t>(it)) == 0;
+  }
   return uncounted([&] {
     return CGAL::orientation(p.xy(), q.xy(), m.s->xy()) == CGAL::COLLINEAR &&
            CGAL::orientation(p.xy(), q.xy(), m.t->xy()) == CGAL::COLLINEAR;
@@ -85,14 +95,14 @@ Probe probe_of(const ScreenScene& ss, const Curve& cv) {
   return probe;
 }
 
-CGAL::Sign orientation(const P3& p, const P3& q, Probe& m) {
+CGAL::Sign orientation(const P3& p, const P3& q, VertexId ip, VertexId iq, Probe& m) {
   return filtered_sign(
       [&] {
         return (approx_of(q.x) - approx_of(p.x)) * (m.iy - approx_of(p.y)) -
                (approx_of(q.y) - approx_of(p.y)) * (m.ix - approx_of(p.x));
       },
       [&]() -> mpq_class {
-        if (curve_on_line(p, q, m)) return 0;
+        if (curve_on_line(p, q, ip, iq, m)) return 0;
         m.need_exact();
         return orient_sign(to_mpq(p.x), to_mpq(p.y), to_mpq(q.x), to_mpq(q.y), m.ex, m.ey);
       });

@@ -252,6 +252,15 @@ struct CurveLine {
   }
 };
 
+// Orientation of (p, q, m) for X's side k, p -> q: with the ends of the facet
+// edge that holds it (Fragment::edge), whose input vertices span its line.
+CGAL::Sign side_orientation(const Fragment& X, std::size_t k, const P3& p, const P3& q, Probe& m) {
+  const int j = X.edge[k];
+  if (j < 0) return orientation(p, q, -1, -1, m);
+  const Facet& F = m.screen->facet(static_cast<std::size_t>(X.facet));
+  return orientation(p, q, F.id[static_cast<std::size_t>(j)], F.id[(static_cast<std::size_t>(j) + 1) % F.id.size()], m);
+}
+
 // Whether fragment X (counter-clockwise, number frag) contains the points just
 // left and just right of m on the curve: m + e n + e^2 d and m - e n + e^2 d for
 // an infinitesimal e > 0, d = t - s the curve's direction and n its left normal.
@@ -266,7 +275,9 @@ bool covers(const Fragment& X, int frag, Probe& m, CurveLine& line, bool& left, 
     const Interval v = (q.x.approx() - p.x.approx()) * (m.iy - p.y.approx()) -
                        (q.y.approx() - p.y.approx()) * (m.ix - p.x.approx());
     const auto told = exact::sign_of(v);   // (an interval of exactly 0 too)
-    const CGAL::Sign o = told ? *told : line.side_on_line(X, frag, k, p, q) ? CGAL::ZERO : orientation(p, q, m);
+    const CGAL::Sign o = told                                  ? *told
+                         : line.side_on_line(X, frag, k, p, q) ? CGAL::ZERO
+                                                               : side_orientation(X, k, p, q, m);
     if (o == CGAL::POSITIVE) continue;
     if (o == CGAL::NEGATIVE) return left = right = false;
     // m on this side's line. Its inward normal is (q - p) turned left: against n
