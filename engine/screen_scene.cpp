@@ -638,6 +638,15 @@ struct CurveMaker {
   bool covered(const WorldPiece& wp) const;
   bool seen_with_area(const WorldPiece& wp) const;
   bool inside_edge_on_plane(const WorldPiece& wp) const;
+  // Whether the facet is its face's only one: every edge of it on the face's
+  // boundary (none a fan's or a triangulation's diagonal).
+  bool whole(int facet) const {
+    const Look& l = look[static_cast<std::size_t>(facet)];
+    const WorldFacet& w = wf.facets[static_cast<std::size_t>(facet)];
+    if (l.boundary & Look::kMany)
+      return std::all_of(w.role.begin(), w.role.end(), [](EdgeRole r) { return r == EdgeRole::Boundary; });
+    return l.boundary == (1u << w.role.size()) - 1;
+  }
 };
 
 // Whether some facet sharing the piece hides or labels: else every one is a
@@ -686,14 +695,18 @@ bool CurveMaker::covered(const WorldPiece& wp) const {
 // one is (a face that hides it hides this one: edge-on facets hide nothing, and
 // the nearer piece's other facets have it on their outline), so this one, drawn
 // or not, is never the first of the pieces there; and it bounds no region (no
-// facet of it labels). It cannot change the map. (A CAD model in a sheet view:
+// facet of it labels). Every facet of it is a whole face (no diagonal inside a
+// polygon): the edge the line of sight came in by is then a line of that face,
+// which competes (a diagonal does not), and no other facet of the same face,
+// not seen edge-on, can hide the nearer piece and not this one (a fanned
+// non-planar polygon's). It cannot change the map. (A CAD model in a sheet view:
 // the triangles of each plane seen edge-on, whose edges all lie on one line
 // there, pairwise overlapping; the far edges of boxes seen along an axis, on
 // the lines of their near edges.) Exact: filtered world predicates.
 bool CurveMaker::inside_edge_on_plane(const WorldPiece& wp) const {
   if (!drop_inside_edge_on) return false;
   for (const Sharer& s : wp.sharers)
-    if (look[static_cast<std::size_t>(s.facet)].occluder) return false;
+    if (look[static_cast<std::size_t>(s.facet)].occluder || !whole(s.facet)) return false;
   auto flat = [&](const Sharer& s) {   // (seen edge-on, projected, whole)
     const Look& f = look[static_cast<std::size_t>(s.facet)];
     return f.projected && f.facing == Facing::EdgeOn && !cut(s.facet);
