@@ -787,7 +787,8 @@ bool CurveMaker::creased(int f, int g) const {
 }
 
 // The curve of edge piece wp, made in c (every field set: c may be reused);
-// false if it is dropped (counted in `dropped`: hidden, clipped, seen end-on).
+// false if it is dropped (counted in `dropped`: hidden, clipped, seen end-on,
+// inside a plane seen edge-on).
 // An end cut at the near plane is kept in `ends`.
 bool CurveMaker::make(const WorldPiece& wp, Curve& c, Dropped& dropped, std::deque<P3>& ends) const {
   std::int64_t &dropped_hidden = dropped[0], &dropped_clipped = dropped[1], &dropped_point = dropped[2];
