@@ -497,11 +497,11 @@ struct CurveMaker {
   double cos_crease = 1;
   bool smooth = false;
   bool drop_inside_edge_on = false;   // (the visible map's curves: inside_edge_on_plane)
-  // Orthographic: the screen's rows r and u (r x u is the direction along which
-  // points share an image) and sight = +1 or -1, so that sight (r x u) points
-  // towards the eye (depth falls along it).
-  Vec3 row_r{}, row_u{};
-  int sight = 0;
+  // Orthographic: +1 or -1 where toward_eye (r x u) points towards the eye
+  // (r, u the view's first two rows: points share an image along r x u, and
+  // depth falls that way); 0 in perspective.
+  int toward_eye = 0;
+  Vec3 row(int k) const { return {view->m[k][0], view->m[k][1], view->m[k][2]}; }
   WorldFacets wf;
   std::vector<WorldPiece> pieces;
   std::vector<std::uint32_t> used;    // place -> input index: vertices in the order facets first use them
@@ -707,7 +707,7 @@ bool CurveMaker::inside_edge_on_plane(const WorldPiece& wp) const {
   if (!drop_inside_edge_on) return false;
   for (const Sharer& s : wp.sharers)
     if (look[static_cast<std::size_t>(s.facet)].occluder || !whole(s.facet)) return false;
-  auto flat = [&](const Sharer& s) {   // (seen edge-on, projected, whole)
+  auto flat = [&](const Sharer& s) {   // (seen edge-on, projected, not cut)
     const Look& f = look[static_cast<std::size_t>(s.facet)];
     return f.projected && f.facing == Facing::EdgeOn && !cut(s.facet);
   };
@@ -718,9 +718,9 @@ bool CurveMaker::inside_edge_on_plane(const WorldPiece& wp) const {
     return scene->vertices[v[(s.edge + 2) % v.size()]];
   };
   const Vec3 &p = scene->vertices[wp.a], &q = scene->vertices[wp.b];
-  if (sight != 0)
+  if (toward_eye != 0)
     return std::any_of(wp.sharers.begin(), wp.sharers.end(), [&](const Sharer& s) {
-      return flat(s) && sight * world::side_of_line_toward(p, q, beyond(s), row_r, row_u) > 0;
+      return flat(s) && toward_eye * world::side_of_line_toward(p, q, beyond(s), row(0), row(1)) > 0;
     });
   if (wp.sharers.size() != 2 || wp.sharers[0].facet == wp.sharers[1].facet) return false;
   if (!flat(wp.sharers[0]) || !flat(wp.sharers[1])) return false;
@@ -1254,16 +1254,11 @@ ScreenScene make_screen_scene(const Scene& scene, const View& view, const Option
   M.cos_crease = std::cos(opt.crease_deg * M_PI / 180);
   M.smooth = opt.smooth;
   M.drop_inside_edge_on = cull;
-  if (!view.perspective) {
-    M.row_r = {view.m[0][0], view.m[0][1], view.m[0][2]};
-    M.row_u = {view.m[1][0], view.m[1][1], view.m[1][2]};
-    // f . (r x u): about -1 (r x u = -f for the camera's unit rows), its sign
-    // beyond doubt on doubles. (Depth is f . p: it falls towards the eye.)
-    const Vec3 &r = M.row_r, &u = M.row_u;
-    const double fe = view.m[2][0] * (r.y * u.z - r.z * u.y) + view.m[2][1] * (r.z * u.x - r.x * u.z) +
-                      view.m[2][2] * (r.x * u.y - r.y * u.x);
-    M.sight = fe < -0.5 ? 1 : fe > 0.5 ? -1 : 0;   // (0: not a camera's frame; two facets decide, as in perspective)
-  }
+  // Depth is f . p (f the third row): it falls along r x u where f . (r x u) < 0
+  // (about -1 for the camera's unit rows), exact. (0: two facets decide, as in
+  // perspective.)
+  if (!view.perspective)
+    M.toward_eye = -world::det<CGAL::Mpzf>(Vec3{0, 0, 0}, M.row(0), M.row(1), M.row(2)).sign();
   const int threads = thread_count(opt.threads, scene.faces.size());
   // The world facets in screen order and their edge pieces: from the world
   // scene where one is kept for many views, else made for this view alone.

@@ -77,44 +77,47 @@ inline bool collinear(const Vec3& o, const Vec3& a, const Vec3& b) {
   return n[0].sign() == 0 && n[1].sign() == 0 && n[2].sign() == 0;
 }
 
-// sign(((q - p) x (r - p)) . ((q - p) x (s - p))), exact: for r and s in one
-// plane with the line pq, +1 where they lie on one side of it, -1 on opposite
-// sides, 0 where one is on the line. Intervals first (upward rounding), binary
-// floats where they cannot tell.
-inline int same_side_of_line(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
+// The sign of value(N) for N = CGAL::Interval_nt<false> under upward rounding
+// (a filter: an interval around the value) where it tells, else for N =
+// CGAL::Mpzf (exact). value: a generic lambda of a number type's zero.
+template <class Value>
+int filtered_world_sign(Value&& value) {
   {
     CGAL::Protect_FPU_rounding<true> upward;
-    using I = CGAL::Interval_nt<false>;
-    const std::array<I, 3> a = normal_of<I>(p, q, r), b = normal_of<I>(p, q, s);
-    const I d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    const CGAL::Interval_nt<false> d = value(CGAL::Interval_nt<false>(0));
     if (d.inf() > 0) return 1;
     if (d.sup() < 0) return -1;
   }
-  const std::array<CGAL::Mpzf, 3> a = normal_of<CGAL::Mpzf>(p, q, r), b = normal_of<CGAL::Mpzf>(p, q, s);
-  return (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]).sign();
+  return value(CGAL::Mpzf(0)).sign();
 }
 
-// sign(((q - p) x (r - p)) . ((q - p) x (a x b))), exact (a x b too: the cross
-// product of two double vectors): for r in a plane with the line pq and the
-// direction a x b, +1 where r lies on that direction's side of the line, -1 on
-// the other, 0 on it. Intervals first (upward rounding), binary floats where
-// they cannot tell.
+// ((q - p) x (r - p)) . ((q - p) x w): for r and w in (a direction parallel
+// to) one plane with the line pq, positive where r lies on w's side of the
+// line, negative on the other, 0 where r is on it.
 template <class N>
-N toward_value(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& a, const Vec3& b) {
+N beside_line(const Vec3& p, const Vec3& q, const Vec3& r, const std::array<N, 3>& w) {
   const std::array<N, 3> n = normal_of<N>(p, q, r);
-  const N ex = N(a.y) * N(b.z) - N(a.z) * N(b.y), ey = N(a.z) * N(b.x) - N(a.x) * N(b.z),
-          ez = N(a.x) * N(b.y) - N(a.y) * N(b.x);
   const N dx = N(q.x) - N(p.x), dy = N(q.y) - N(p.y), dz = N(q.z) - N(p.z);
-  return n[0] * (dy * ez - dz * ey) + n[1] * (dz * ex - dx * ez) + n[2] * (dx * ey - dy * ex);
+  return n[0] * (dy * w[2] - dz * w[1]) + n[1] * (dz * w[0] - dx * w[2]) + n[2] * (dx * w[1] - dy * w[0]);
 }
+
+// For r and s in one plane with the line pq, exact: +1 where they lie on one
+// side of it, -1 on opposite sides, 0 where one is on the line.
+inline int same_side_of_line(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
+  return filtered_world_sign([&](auto zero) {
+    using N = decltype(zero);
+    return beside_line<N>(p, q, r, {N(s.x) - N(p.x), N(s.y) - N(p.y), N(s.z) - N(p.z)});
+  });
+}
+
+// For r in a plane with the line pq and the direction a x b (the exact cross
+// product of two double vectors), exact: +1 where r lies on that direction's
+// side of the line, -1 on the other, 0 on it.
 inline int side_of_line_toward(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& a, const Vec3& b) {
-  {
-    CGAL::Protect_FPU_rounding<true> upward;
-    const CGAL::Interval_nt<false> d = toward_value<CGAL::Interval_nt<false>>(p, q, r, a, b);
-    if (d.inf() > 0) return 1;
-    if (d.sup() < 0) return -1;
-  }
-  return toward_value<CGAL::Mpzf>(p, q, r, a, b).sign();
+  return filtered_world_sign([&](auto zero) {
+    using N = decltype(zero);
+    return beside_line<N>(p, q, r, normal_of<N>(Vec3{0, 0, 0}, a, b));
+  });
 }
 
 // orientation(o, a, b, p) for several points p against one plane: its normal
