@@ -287,15 +287,43 @@ bool hidden_in_cell(const Curve& cv, const Cell& cell, const std::array<Corner, 
   return false;
 }
 
-// The segment s-t meets the closed cell (its bounding box is known to): not all
-// four corners strictly on one side of its line.
-bool meets_cell(const P3& s, const P3& t, const std::array<Corner, 4>& c) {
-  const CGAL::Sign first = orientation(s, t, c[0]);
-  if (first == CGAL::ZERO) return true;
-  for (int k = 1; k < 4; ++k)
-    if (orientation(s, t, c[k]) != first) return true;
-  return false;
-}
+// Whether the segment s-t meets each closed cell x0..x1 of row iy (their boxes
+// are known to meet its box): not all four corners strictly on one side of its
+// line. The corners' orientations, for the whole row at once (under upward
+// rounding): neighbouring cells share two corners, and the end points'
+// intervals are read once; each is orientation()'s interval expression, the
+// exact sign only where it cannot tell. (Four orientations per cell were 4-8 %
+// of a view of a mesh, or of squares seen obliquely, where a slanted edge's box
+// holds many cells it misses.)
+class RowCorners {
+ public:
+  RowCorners(const P3& s, const P3& t, const Grid& g, int x0, int x1, int iy) : s_(s), t_(t), x0_(x0) {
+    const Interval sx = approx_of(s.x), sy = approx_of(s.y), dx = approx_of(t.x) - sx, dy = approx_of(t.y) - sy;
+    // (dx (y - sy) - dy (x - sx): the first product is the row's, the second the column's.)
+    const Interval below = dx * (g.Y[iy] - sy), above = dx * (g.Y[iy + 1] - sy);
+    for (int ix = x0; ix <= x1 + 1; ++ix) {
+      const Interval across = dy * (g.X[ix] - sx);
+      bottom_.push_back(sign_at(below - across, Corner{g.X[ix], g.Y[iy]}));
+      top_.push_back(sign_at(above - across, Corner{g.X[ix], g.Y[iy + 1]}));
+    }
+  }
+  bool meets(int ix) const {
+    const auto j = static_cast<std::size_t>(ix - x0_);
+    const CGAL::Sign first = bottom_[j];
+    return first == CGAL::ZERO || bottom_[j + 1] != first || top_[j + 1] != first || top_[j] != first;
+  }
+
+ private:
+  CGAL::Sign sign_at(const Interval& value, const Corner& p) const {
+    ++filter_counts.calls;
+    if (const auto known = sign_of(value)) return *known;
+    --filter_counts.calls;   // (counted again there)
+    return orientation(s_, t_, p);
+  }
+  const P3 &s_, &t_;
+  int x0_;
+  SmallVec<CGAL::Sign, 8> bottom_, top_;
+};
 
 // Where coordinate v falls among an axis's cells, as a fraction of the axis
 // (0 at its first boundary, 1 at its last): the grid's own coordinates, in which
@@ -1427,12 +1455,15 @@ std::int64_t bucket(Grid& g, const ScreenScene& ss, int threads, Take&& take, In
       const Curve& cv = ss.curves[ci];
       const CellRange& r = range[static_cast<std::size_t>(ci)];
       bool kept = false;
+      // (A cell the double box reaches only by rounding may be kept: harmless,
+      // cut points count only in the cell that holds them.)
+      const bool one_cell = r.x0 == r.x1 && r.y0 == r.y1;
+      const std::optional<RowCorners> line =
+          one_cell ? std::nullopt : std::optional<RowCorners>(std::in_place, *cv.s, *cv.t, g, r.x0, r.x1, iy);
       for (int ix = r.x0; ix <= r.x1; ++ix) {
         if (!into(ix, iy)) continue;
         Cell& cell = g.at(ix, iy);
-        // (A cell the double box reaches only by rounding may be kept: harmless,
-        // cut points count only in the cell that holds them.)
-        if ((r.x0 != r.x1 || r.y0 != r.y1) && !meets_cell(*cv.s, *cv.t, corners(g, ix, iy))) continue;
+        if (line && !line->meets(ix)) continue;
         if (cell.blocker >= 0 && curve_behind(cv, ss.facet(cell.blocker), ss.world)) continue;
         cell.curves.push_back(ci);
         kept = true;
