@@ -93,7 +93,7 @@ engine:
                        8192 faces side by side (default: every usable core,
                        one for a single view of such a scene); the map is the
                        same for every N
-  --grid-c C           Franklin's grid constant c, B = c*min(sqrt(N),1/L) (default 4)
+  --grid-c C           Franklin's grid constant c, B = c*min(sqrt(N),1/L) (default 2.5)
   --painter FILE       with --algorithm newell or bsp: SVG of the ordered, split
                        fragments filled back to front (the painter's drawing)
   --stats              print statistics on stderr and add phase timings to the

@@ -105,7 +105,7 @@ enum class Algorithm { Franklin, Newell, Bsp };   // all give the same map
 
 struct Options {
   double crease_deg = 30;   // dihedral angle above which a shared edge is a crease
-  double grid_c = 4.0;      // Franklin's c in B = c * min(sqrt(N), 1/L)
+  double grid_c = 2.5;      // Franklin's c in B = c * min(sqrt(N), 1/L)
   bool smooth = false;      // also draw smooth edges
   bool hidden = false;      // also the hidden lines
   bool regions = true;      // false: the segments alone (a lines-only drawing), computing
