@@ -69,14 +69,16 @@ LineKey line_key(const Vec3& p, const Vec3& q, int k) {
   return key;
 }
 
-bool key_less(const LineKey& a, const LineKey& b) {
-  if (a.axis != b.axis) return a.axis < b.axis;
-  for (int i = 0; i < 4; ++i) {
-    const int c = (a.num[i] * b.den - b.num[i] * a.den).sign();
-    if (c) return c < 0;
-  }
-  return false;
+// -1, 0 or 1 as key a orders before, with or after b (one comparison: keys
+// sorted are mostly equal, a line's edges together, and key_less both ways
+// took every component twice).
+int key_compare(const LineKey& a, const LineKey& b) {
+  if (a.axis != b.axis) return a.axis < b.axis ? -1 : 1;
+  for (int i = 0; i < 4; ++i)
+    if (const int c = (a.num[i] * b.den - b.num[i] * a.den).sign()) return c;
+  return 0;
 }
+bool key_less(const LineKey& a, const LineKey& b) { return key_compare(a, b) < 0; }
 
 // Lines are first told apart without GMP. Each key value falls in a cell: the
 // reals truncated (towards zero) to 1 + cell_bits significant bits. An edge
@@ -509,9 +511,8 @@ MatchedEdges match_edges_ranked(const Scene& scene, const WorldFacets& wf, int c
       keyed.emplace_back(exact_key(group_edge(h), dir[h].axis), h);
     }
     std::sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) {
-      if (key_less(x.first, y.first)) return true;
-      if (key_less(y.first, x.first)) return false;
-      return x.second < y.second;
+      const int c = key_compare(x.first, y.first);
+      return c != 0 ? c < 0 : x.second < y.second;
     });
     const std::size_t first = out.pieces.size();
     for (std::size_t a = 0; a < keyed.size();) {
