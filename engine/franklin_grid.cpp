@@ -639,10 +639,37 @@ void mark_kept(std::vector<std::vector<int>>& kept_by_row, std::vector<char>& ke
   }
 }
 
+// Whether the corners of the cells of row iy lie strictly inside facet f's
+// projection (strictly_inside), each corner asked once, when first needed:
+// neighbouring cells share two. (Four per cell were a tenth of a view of the
+// generated building, whose walls and slabs cover many cells each.)
+class InsideCorners {
+ public:
+  InsideCorners(const Facet& f, const Grid& g, int x0, int x1, int iy) : f_(f), g_(g), x0_(x0), x1_(x1), iy_(iy) {}
+  // All four corners of cell ix strictly inside, asked in corners()'s order.
+  bool all(int ix) {
+    return inside(ix, 0) && inside(ix + 1, 0) && inside(ix + 1, 1) && inside(ix, 1);
+  }
+
+ private:
+  static constexpr signed char kUnknown = -1;
+  bool inside(int column, int top) {
+    // (Made at the first question: a mesh's small facets rarely hold a whole cell.)
+    if (known_.empty()) known_.assign(2 * static_cast<std::size_t>(x1_ - x0_ + 2), kUnknown);
+    signed char& k = known_[2 * static_cast<std::size_t>(column - x0_) + static_cast<std::size_t>(top)];
+    if (k == kUnknown) k = strictly_inside(f_, Corner{g_.X[column], g_.Y[iy_ + top]}) ? 1 : 0;
+    return k != 0;
+  }
+  const Facet& f_;
+  const Grid& g_;
+  int x0_, x1_, iy_;
+  std::vector<signed char> known_;
+};
+
 // Step 5 for facet fi in cell (ix, iy): listed, made the blocker, or skipped as
 // hidden by the blocker there. True if the facet is kept in the cell.
-bool bucket_facet(Grid& g, const ScreenScene& ss, int fi, int ix, int iy, std::int64_t& skipped,
-                  std::int64_t& blockers) {
+bool bucket_facet(Grid& g, const ScreenScene& ss, int fi, int ix, int iy, InsideCorners& inside,
+                  std::int64_t& skipped, std::int64_t& blockers) {
   const Facet& f = ss.facet(fi);
   Cell& cell = g.at(ix, iy);
   auto c = corners(g, ix, iy);
@@ -654,7 +681,7 @@ bool bucket_facet(Grid& g, const ScreenScene& ss, int fi, int ix, int iy, std::i
   // (A corner strictly inside the facet lies inside its box: a cell the box does
   // not hold is not covered, told without a predicate. Most are not, on a mesh.)
   const bool boxed = f.box.xmin() <= c[0].x && c[2].x <= f.box.xmax() && f.box.ymin() <= c[0].y && c[2].y <= f.box.ymax();
-  bool covers = f.planar && boxed && std::all_of(c.begin(), c.end(), [&](const Corner& p) { return strictly_inside(f, p); });
+  bool covers = f.planar && boxed && inside.all(ix);
   if (!covers) { cell.facets.push_back(fi); return true; }
   ++blockers;
   if (cell.blocker < 0 || behind_throughout(ss.facet(cell.blocker), f, c)) { cell.blocker = fi; return true; }
@@ -884,8 +911,9 @@ void bucket_facets(Grid& g, ScreenScene& ss, bool regions, int threads, Stats& s
     for (int fi : rows[row]) {
       const CellRange& r = g.facet_range[static_cast<std::size_t>(fi)];
       bool kept = false;
+      InsideCorners inside(ss.facet(fi), g, r.x0, r.x1, iy);
       for (int ix = r.x0; ix <= r.x1; ++ix)
-        if (looked_at(ix, iy)) kept |= bucket_facet(g, ss, fi, ix, iy, skipped, blockers);
+        if (looked_at(ix, iy)) kept |= bucket_facet(g, ss, fi, ix, iy, inside, skipped, blockers);
       if (kept) kept_here.push_back(fi);
     }
     kept_by_row[row] = std::move(kept_here);
