@@ -315,10 +315,10 @@ class RowCorners {
 
  private:
   CGAL::Sign sign_at(const Interval& value, const Corner& p) const {
+    const auto known = sign_of(value);
+    if (!known) return orientation(s_, t_, p);   // (counted there)
     ++filter_counts.calls;
-    if (const auto known = sign_of(value)) return *known;
-    --filter_counts.calls;   // (counted again there)
-    return orientation(s_, t_, p);
+    return *known;
   }
   const P3 &s_, &t_;
   int x0_;
