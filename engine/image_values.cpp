@@ -105,6 +105,27 @@ bool row_dyadic(const std::array<double, 4>& row, const Vec3& p, Dyadic& out) {
   return true;
 }
 
+bool sum_sign(const std::array<double, 4>& terms, int& sign) {
+  std::int64_t m[4];
+  long e[4], least = 0;
+  int n = 0;
+  for (const double t : terms) {
+    if (!split(t, m[n], e[n])) return false;
+    if (m[n] == 0) continue;
+    least = n == 0 ? e[n] : std::min(least, e[n]);
+    ++n;
+  }
+  // Each term over the least exponent in 124 bits: four of them sum in 126.
+  Int128 sum = 0;
+  for (int i = 0; i < n; ++i) {
+    const long shift = e[i] - least;
+    if (shift > 124 - 53) return false;
+    sum += static_cast<Int128>(m[i]) * (static_cast<Int128>(1) << shift);
+  }
+  sign = (sum > 0) - (sum < 0);
+  return true;
+}
+
 void set_dyadic(mpq_ptr q, const Dyadic& a, long k) {
   if (a.m == 0) return mpq_set_ui(q, 0, 1);
   set_canonical(q, a.m < 0, magnitude(a.m), 1, a.e + k);

@@ -28,6 +28,10 @@ struct Dyadic {
 // (row . (p, 1)) exactly as a Dyadic, or false where it does not fit.
 bool row_dyadic(const std::array<double, 4>& row, const Vec3& p, Dyadic& out);
 
+// The sign of the exact sum of four doubles, or false where it does not fit
+// (their exponents far apart, or not finite).
+bool sum_sign(const std::array<double, 4>& terms, int& sign);
+
 // q = a 2^k, canonical (q initialised).
 void set_dyadic(mpq_ptr q, const Dyadic& a, long k);
 

@@ -3,17 +3,20 @@
 #include "engine/franklin_grid.h"
 #include "engine/lazy_leaves.h"
 
+#include <optional>
+
 namespace vismap::engine {
 VISMAP_KERNEL_BEGIN
 
 namespace {
 
-// The exact zeros that the curve's own geometry gives, before m's exact value
-// (a midpoint of crossings: the costliest number here) is built. On scenes of
+// The signs that the curve's own geometry gives, before m's exact value (a
+// midpoint of crossings: the costliest number here) is built. On scenes of
 // aligned parts (walls of rooms, boxes side by side) curves run along other
-// facets' edges and in other facets' planes everywhere. Each is told on the
-// curve's end points (input vertices mostly, whose exact values are kept), and
-// not counted among the predicates: the count stays that of the questions asked.
+// facets' edges and in other facets' planes everywhere, and seen along a
+// diagonal, within rounding of them. Each is told on the curve's end points
+// (input vertices mostly, whose exact values are kept), and not counted among
+// the predicates: the count stays that of the questions asked.
 template <class Test>
 bool uncounted(Test&& test) {
   const exact::FilterCounts before = exact::filter_counts;
@@ -23,22 +26,48 @@ bool uncounted(Test&& test) {
   return yes;
 }
 
-// The curve lies on the line p -> q (so m does). Where all four are input
-// vertices seen orthographically, the world decides (ExactSource::
+// A sign at m that follows from the signs at the curve's ends s and t: m lies
+// strictly between them on the curve, and the quantity is affine along it, so
+// m has their sign where they agree or one is 0 (both 0: the whole curve
+// gives 0). None where they differ: the curve crosses over, and m's sign
+// depends on where.
+std::optional<int> sign_between(int at_s, int at_t) {
+  if (at_s * at_t < 0) return std::nullopt;
+  return at_s + at_t > 0 ? 1 : at_s + at_t < 0 ? -1 : 0;
+}
+
+// What the input vertices given with a line p -> q are: p's and q's own, or
+// two that span its line in either direction, which tell only whether the
+// curve lies on it.
+enum class LineIds { Ends, Span };
+
+// orientation(p, q, m) from the curve's ends, before m's exact value (a
+// midpoint of crossings: the costliest number here) is built. Where all four
+// are input vertices seen orthographically, the world decides (ExactSource::
 // screen_cross_sign: the images' rationals, a crossing's or a midpoint's
 // lines mostly, never made): the edges of a lattice of boxes seen along its
-// rows lie on each other's screen lines by the thousand.
-bool curve_on_line(const P3& p, const P3& q, VertexId ip, VertexId iq, const Probe& m) {
+// rows lie on each other's screen lines by the thousand, and seen along its
+// diagonal, near them (the view's rows are rounded) by the hundred thousand.
+template <LineIds ids>
+std::optional<int> side_from_ends(const P3& p, const P3& q, VertexId ip, VertexId iq, const Probe& m) {
   const VertexId is = m.curve->vs, it = m.curve->vt;
   if (m.orthographic && ip >= 0 && iq >= 0 && is >= 0 && it >= 0) {
     const auto a = static_cast<std::uint32_t>(ip), b = static_cast<std::uint32_t>(iq);
-    return m.orthographic->screen_cross_sign(a, b, a, static_cast<std::uint32_t>(is)) == 0 &&
-           m.orthographic->screen_cross_sign(a, b, a, static_cast<std::uint32_t>(it)) == 0;
+    const int at_s = m.orthographic->screen_cross_sign(a, b, a, static_cast<std::uint32_t>(is));
+    if constexpr (ids == LineIds::Span)
+      if (at_s != 0) return std::nullopt;
+    const int at_t = m.orthographic->screen_cross_sign(a, b, a, static_cast<std::uint32_t>(it));
+    if constexpr (ids == LineIds::Span)
+      if (at_t != 0) return std::nullopt;
+    return sign_between(at_s, at_t);
   }
-  return uncounted([&] {
-    return CGAL::orientation(p.xy(), q.xy(), m.s->xy()) == CGAL::COLLINEAR &&
-           CGAL::orientation(p.xy(), q.xy(), m.t->xy()) == CGAL::COLLINEAR;
+  int at_s = 0, at_t = 0;
+  uncounted([&] {
+    at_s = CGAL::orientation(p.xy(), q.xy(), m.s->xy());
+    at_t = CGAL::orientation(p.xy(), q.xy(), m.t->xy());
+    return true;
   });
+  return sign_between(at_s, at_t);
 }
 
 // Facet f is one of those whose edge the curve is (so the curve is in its plane).
@@ -48,12 +77,20 @@ bool holds_curve(const Facet& f, const Probe& m) {
   return false;
 }
 
-// The curve lies in facet f's plane (its depth is f's at m).
-bool curve_in_plane(const Facet& f, const Probe& m) {
-  return uncounted([&] {
-    return depth_above(*m.s, f, m.world, m.curve->vs) == CGAL::ZERO &&
-           depth_above(*m.t, f, m.world, m.curve->vt) == CGAL::ZERO;
+// The sign of f's depth minus the curve's at m from the curve's ends (depth_above
+// is the curve's minus f's), before m's exact value is built: 0 where the curve
+// lies in f's plane (the edges of aligned parts lie in other facets' planes
+// everywhere).
+std::optional<int> depth_from_ends(const Facet& f, const Probe& m) {
+  int at_s = 0, at_t = 0;
+  uncounted([&] {
+    at_s = depth_above(*m.s, f, m.world, m.curve->vs);
+    at_t = depth_above(*m.t, f, m.world, m.curve->vt);
+    return true;
   });
+  const std::optional<int> above = sign_between(at_s, at_t);
+  if (!above) return std::nullopt;
+  return -*above;
 }
 
 // Whether the curve's ends have one screen x: where both are input vertices,
@@ -95,17 +132,30 @@ Probe probe_of(const ScreenScene& ss, const Curve& cv) {
   return probe;
 }
 
-CGAL::Sign orientation(const P3& p, const P3& q, VertexId ip, VertexId iq, Probe& m) {
+namespace {
+
+template <LineIds ids>
+CGAL::Sign oriented(const P3& p, const P3& q, VertexId ip, VertexId iq, Probe& m) {
   return filtered_sign(
       [&] {
         return (approx_of(q.x) - approx_of(p.x)) * (m.iy - approx_of(p.y)) -
                (approx_of(q.y) - approx_of(p.y)) * (m.ix - approx_of(p.x));
       },
       [&]() -> mpq_class {
-        if (curve_on_line(p, q, ip, iq, m)) return 0;
+        if (const std::optional<int> side = side_from_ends<ids>(p, q, ip, iq, m)) return *side;
         m.need_exact();
         return orient_sign(to_mpq(p.x), to_mpq(p.y), to_mpq(q.x), to_mpq(q.y), m.ex, m.ey);
       });
+}
+
+}  // namespace
+
+CGAL::Sign orientation(const P3& p, const P3& q, VertexId ip, VertexId iq, Probe& m) {
+  return oriented<LineIds::Ends>(p, q, ip, iq, m);
+}
+
+CGAL::Sign orientation_on_spanned_line(const P3& p, const P3& q, VertexId ip, VertexId iq, Probe& m) {
+  return oriented<LineIds::Span>(p, q, ip, iq, m);
 }
 
 CGAL::Sign edge_along(const P3& p, const P3& q, Probe& m) {
@@ -165,7 +215,7 @@ CGAL::Sign depth_against_curve(const Facet& f, Probe& m) {
         return f.plane->approx(0) * m.ix + f.plane->approx(1) * m.iy + f.plane->approx(2) - z;
       },
       [&]() -> mpq_class {
-        if (curve_in_plane(f, m)) return 0;
+        if (const std::optional<int> depth = depth_from_ends(f, m)) return *depth;
         m.need_exact();
         const mpq_class lambda = m.x_moves ? mpq_class((m.ex - to_mpq(m.s->x)) / m.edx)
                                            : mpq_class((m.ey - to_mpq(m.s->y)) / m.edy);

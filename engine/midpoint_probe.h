@@ -60,10 +60,12 @@ bool mostly_along_x(const Curve& cv);
 // The probe of curve cv of ss (its direction set; at_midpoint sets the point).
 Probe probe_of(const ScreenScene& ss, const Curve& cv);
 
-// Orientation of (p, q, m): positive when m is left of p -> q. ip, iq: two
-// input vertices whose images span that line (p's and q's canonical vertex ids,
-// or those of an edge that holds it), or -1 (a near-plane cut's point).
+// Orientation of (p, q, m): positive when m is left of p -> q. ip, iq: p's and
+// q's canonical vertex ids, or -1 (a near-plane cut's point).
 CGAL::Sign orientation(const P3& p, const P3& q, VertexId ip, VertexId iq, Probe& m);
+// The same where ip and iq are two input vertices whose images span the line
+// p -> q in either direction (a Newell fragment's side on its facet's edge).
+CGAL::Sign orientation_on_spanned_line(const P3& p, const P3& q, VertexId ip, VertexId iq, Probe& m);
 // sign((q - p) . (t - s)): a facet edge's direction against the curve's.
 CGAL::Sign edge_along(const P3& p, const P3& q, Probe& m);
 // sign((q - p) x (t - s)): zero where a facet edge runs parallel to the curve.

@@ -258,7 +258,8 @@ CGAL::Sign side_orientation(const Fragment& X, std::size_t k, const P3& p, const
   const int j = X.edge[k];
   if (j < 0) return orientation(p, q, -1, -1, m);
   const Facet& F = m.screen->facet(static_cast<std::size_t>(X.facet));
-  return orientation(p, q, F.id[static_cast<std::size_t>(j)], F.id[(static_cast<std::size_t>(j) + 1) % F.id.size()], m);
+  return orientation_on_spanned_line(p, q, F.id[static_cast<std::size_t>(j)],
+                                     F.id[(static_cast<std::size_t>(j) + 1) % F.id.size()], m);
 }
 
 // Whether fragment X (counter-clockwise, number frag) contains the points just

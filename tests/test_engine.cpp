@@ -734,8 +734,10 @@ TEST(ScreenLines, CrossProductSignsFromTheWorldAreTheImages) {
   for (int i = 0; i < 8; ++i) world.push_back({any(rng), any(rng), any(rng)});
   const auto n = static_cast<std::uint32_t>(world.size());
   int zeros = 0, signs = 0;
+  // (Along a diagonal, the isometric views: two of the sight's coordinates
+  // equal or opposite, ExactSource::axis_cross's machine-integer case.)
   for (const std::array<double, 3>& d : std::vector<std::array<double, 3>>{
-           {0, -1, 0}, {-0.866, 0, -0.5}, {-1, -2, -3}, {0.3, 0.1, -1}}) {
+           {0, -1, 0}, {-0.866, 0, -0.5}, {-1, -2, -3}, {0.3, 0.1, -1}, {-1, -1, -1}, {1, -1, -1}, {-2, -2, -1}}) {
     vismap::exact::ExactSource source;
     look_along(d, world, source);
     source.k = 3;
@@ -1048,6 +1050,25 @@ TEST(FilteredSign, ALatticeSeenAlongItsRowsNeedsFewExactPredicates) {
   const std::int64_t predicates = whole.counted("predicates"), exact = whole.counted("predicates_exact");
   EXPECT_GT(predicates, 10000);
   EXPECT_LT(exact, predicates / 200) << exact << " of " << predicates << " predicates exact";
+}
+
+// The same lattice, corners on a grid of halves, seen along its diagonal (an
+// isometric view, whose rows are rounded): images on each other's lines by
+// the hundred, and near them everywhere, so that most pieces' sides and
+// depths are told from their curves' ends (midpoint_probe.cpp) and the
+// world's exact signs (ExactSource::axis_cross, whose sight has two equal
+// coordinates here). Newell's engine writes the same map; the checker accepts it.
+TEST(FilteredSign, ALatticeSeenAlongItsDiagonalAsNewellAndTheChecker) {
+  for (const Vec3& dir : std::vector<Vec3>{{-1, -1, -1}, {1, -1, -1}, {-2, -2, -1}}) {
+    Shot shot{"lattice of boxes seen along its diagonal", {}, ortho(dir)};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        for (int k = 0; k < 3; ++k)
+          vismap::gen::add_box(shot.scene, {double(i), double(j), double(k)},
+                               {i + 0.5 + 0.5 * ((i + k) % 2), j + 0.5, k + 0.5 + 0.5 * ((j * k) % 2)});
+    const vismap::Stats whole = expect_as_newell_and_checker(shot).first;
+    EXPECT_GT(whole.counted("visible_segments"), 100) << dir.x << "," << dir.y << "," << dir.z;
+  }
 }
 
 // Where two lines each with a hiding facet on both sides (Curve::covered) cross
