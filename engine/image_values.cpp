@@ -72,13 +72,32 @@ void set_canonical(mpq_ptr q, bool negative, UInt128 num, UInt128 den, long e) {
   if (negative) mpz_neg(mpq_numref(q), mpq_numref(q));
 }
 
+// m 2^e: a double, or the product of two (|m| < 2^106).
+struct Term {
+  Int128 m;
+  long e;
+};
+
+// The sum of n terms as sum 2^least (least: their least exponent; 0 for no
+// term), or false where a term over that exponent needs more than 124 bits:
+// four of them then sum in 126.
+bool sum_of(const Term* terms, int n, Int128& sum, long& least) {
+  sum = 0;
+  least = 0;
+  if (n == 0) return true;
+  least = terms[0].e;
+  for (int i = 1; i < n; ++i) least = std::min(least, terms[i].e);
+  for (int i = 0; i < n; ++i) {
+    const long shift = terms[i].e - least;
+    if (shift + bit_length(magnitude(terms[i].m)) > 124) return false;
+    sum += terms[i].m * (static_cast<Int128>(1) << shift);
+  }
+  return true;
+}
+
 }  // namespace
 
 bool row_dyadic(const std::array<double, 4>& row, const Vec3& p, Dyadic& out) {
-  struct Term {
-    Int128 m;
-    long e;
-  };
   Term terms[4];
   int n = 0;
   const double v[3] = {p.x, p.y, p.z};
@@ -88,40 +107,28 @@ bool row_dyadic(const std::array<double, 4>& row, const Vec3& p, Dyadic& out) {
     if (!split(row[c], a, ea) || (c < 3 && !split(v[c], b, eb))) return false;
     if (a != 0 && b != 0) terms[n++] = Term{static_cast<Int128>(a) * b, ea + eb};   // (|m| < 2^106)
   }
-  out = Dyadic{};
-  if (n == 0) return true;
-  long least = terms[0].e;
-  for (int i = 1; i < n; ++i) least = std::min(least, terms[i].e);
-  // Each term over the least exponent in 124 bits: four of them sum in 126.
   Int128 sum = 0;
-  for (int i = 0; i < n; ++i) {
-    const long shift = terms[i].e - least;
-    if (shift + bit_length(magnitude(terms[i].m)) > 124) return false;
-    sum += terms[i].m * (static_cast<Int128>(1) << shift);
-  }
+  long least = 0;
+  if (!sum_of(terms, n, sum, least)) return false;
+  out = Dyadic{};
   if (sum == 0) return true;
   const int zeros = trailing_zeros(magnitude(sum));
   out = Dyadic{sum / (static_cast<Int128>(1) << zeros), least + zeros};
   return true;
 }
 
-bool sum_sign(const std::array<double, 4>& terms, int& sign) {
-  std::int64_t m[4];
-  long e[4], least = 0;
+bool sum_sign(const std::array<double, 4>& values, int& sign) {
+  Term terms[4];
   int n = 0;
-  for (const double t : terms) {
-    if (!split(t, m[n], e[n])) return false;
-    if (m[n] == 0) continue;
-    least = n == 0 ? e[n] : std::min(least, e[n]);
-    ++n;
+  for (const double v : values) {
+    std::int64_t m = 0;
+    long e = 0;
+    if (!split(v, m, e)) return false;
+    if (m != 0) terms[n++] = Term{m, e};
   }
-  // Each term over the least exponent in 124 bits: four of them sum in 126.
   Int128 sum = 0;
-  for (int i = 0; i < n; ++i) {
-    const long shift = e[i] - least;
-    if (shift > 124 - 53) return false;
-    sum += static_cast<Int128>(m[i]) * (static_cast<Int128>(1) << shift);
-  }
+  long least = 0;
+  if (!sum_of(terms, n, sum, least)) return false;
   sign = (sum > 0) - (sum < 0);
   return true;
 }

@@ -18,12 +18,12 @@ namespace {
 // (input vertices mostly, whose exact values are kept), and not counted among
 // the predicates: the count stays that of the questions asked.
 template <class Test>
-bool uncounted(Test&& test) {
+auto uncounted(Test&& test) {
   const exact::FilterCounts before = exact::filter_counts;
   NearestRounding nearest;
-  const bool yes = test();
+  const auto answer = test();
   exact::filter_counts = before;
-  return yes;
+  return answer;
 }
 
 // A sign at m that follows from the signs at the curve's ends s and t: m lies
@@ -61,13 +61,9 @@ std::optional<int> side_from_ends(const P3& p, const P3& q, VertexId ip, VertexI
       if (at_t != 0) return std::nullopt;
     return sign_between(at_s, at_t);
   }
-  int at_s = 0, at_t = 0;
-  uncounted([&] {
-    at_s = CGAL::orientation(p.xy(), q.xy(), m.s->xy());
-    at_t = CGAL::orientation(p.xy(), q.xy(), m.t->xy());
-    return true;
+  return uncounted([&] {
+    return sign_between(CGAL::orientation(p.xy(), q.xy(), m.s->xy()), CGAL::orientation(p.xy(), q.xy(), m.t->xy()));
   });
-  return sign_between(at_s, at_t);
 }
 
 // Facet f is one of those whose edge the curve is (so the curve is in its plane).
@@ -82,13 +78,9 @@ bool holds_curve(const Facet& f, const Probe& m) {
 // lies in f's plane (the edges of aligned parts lie in other facets' planes
 // everywhere).
 std::optional<int> depth_from_ends(const Facet& f, const Probe& m) {
-  int at_s = 0, at_t = 0;
-  uncounted([&] {
-    at_s = depth_above(*m.s, f, m.world, m.curve->vs);
-    at_t = depth_above(*m.t, f, m.world, m.curve->vt);
-    return true;
+  const std::optional<int> above = uncounted([&] {
+    return sign_between(depth_above(*m.s, f, m.world, m.curve->vs), depth_above(*m.t, f, m.world, m.curve->vt));
   });
-  const std::optional<int> above = sign_between(at_s, at_t);
   if (!above) return std::nullopt;
   return -*above;
 }
